@@ -1,0 +1,28 @@
+#pragma once
+// The library throws this small hierarchy; each tool's main catches once and maps the kind to an
+// exit code (see README "Exit codes").
+#include <stdexcept>
+#include <string>
+
+namespace dem {
+
+struct Error : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+// Bad user input: scene file, command-line option, a checkpoint that does not fit the scene.
+struct InputError : Error {
+  using Error::Error;
+};
+// A file that cannot be read or written: missing, truncated, corrupted, foreign, disk full.
+struct IoError : Error {
+  using Error::Error;
+};
+// The simulation became unphysical (NaN/Inf, runaway overlap).
+struct PhysicsError : Error {
+  using Error::Error;
+};
+
+// Exit codes shared by all tools.
+enum ExitCode : int { kExitOk = 0, kExitUsage = 2, kExitInput = 3, kExitIo = 4, kExitPhysics = 5, kExitInternal = 70 };
+
+}  // namespace dem

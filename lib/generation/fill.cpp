@@ -1,0 +1,97 @@
+#include "generation/fill.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <unordered_map>
+
+#include "core/error.hpp"
+
+namespace dem {
+
+void fill_random(Simulation& sim, const GenerationSpec& spec, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double cell = 2 * spec.radius_max;
+  // Hash grid of placed spheres for O(1) overlap checks.
+  std::unordered_map<long, std::vector<int>> grid;
+  auto key = [&](long i, long j, long k) { return (i * 73856093L) ^ (j * 19349663L) ^ (k * 83492791L); };
+  Particles& p = sim.particles;
+  const Index first_id = p.max_id() + 1;
+  const long max_attempts = 1000L * spec.count + 100000;
+  long attempts = 0;
+  while (static_cast<int>(p.size()) < spec.count) {
+    if (++attempts > max_attempts) {
+      std::ostringstream m;
+      m << "generation: placed only " << p.size() << " of " << spec.count << " spheres in the box after " << max_attempts
+        << " attempts; enlarge generation.box_min/box_max or lower generation.count (random placement reaches a solid "
+           "fraction of about 0.3; settling compacts it)";
+      throw InputError(m.str());
+    }
+    const double a = spec.radius_min + (spec.radius_max - spec.radius_min) * unit(rng);
+    Vec3 x;
+    for (int d = 0; d < 3; ++d) x[d] = spec.box_min[d] + a + (spec.box_max[d] - spec.box_min[d] - 2 * a) * unit(rng);
+    double pick = unit(rng);
+    int mat = spec.material_fractions.back().first;
+    for (const auto& [m, f] : spec.material_fractions) {
+      if (pick < f) {
+        mat = m;
+        break;
+      }
+      pick -= f;
+    }
+    const long ci = static_cast<long>(std::floor(x[0] / cell)), cj = static_cast<long>(std::floor(x[1] / cell)),
+               ck = static_cast<long>(std::floor(x[2] / cell));
+    bool free = true;
+    for (long di = -1; di <= 1 && free; ++di)
+      for (long dj = -1; dj <= 1 && free; ++dj)
+        for (long dk = -1; dk <= 1 && free; ++dk) {
+          auto it = grid.find(key(ci + di, cj + dj, ck + dk));
+          if (it == grid.end()) continue;
+          for (int o : it->second) {
+            const double r = a + p.radius[o];
+            if ((p.x[o] - x).squaredNorm() < r * r) {
+              free = false;
+              break;
+            }
+          }
+        }
+    if (!free) continue;
+    grid[key(ci, cj, ck)].push_back(static_cast<int>(p.size()));
+    p.add(first_id + static_cast<Index>(p.size()), x, a, sim.materials.materials()[mat].density, mat);
+  }
+}
+
+void tile(Simulation& sim, int nx, int ny, int nz, const Vec3& period) {
+  const Particles src = sim.particles;
+  Particles& p = sim.particles;
+  p = Particles{};
+  Index next = 0;
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        const Vec3 shift(i * period[0], j * period[1], k * period[2]);
+        for (std::size_t s = 0; s < src.size(); ++s) {
+          p.id.push_back(next++);
+          p.x.push_back(src.x[s] + shift);
+          p.v.push_back(src.v[s]);
+          p.w.push_back(src.w[s]);
+          p.x_ref.push_back(src.x[s] + shift);
+          p.radius.push_back(src.radius[s]);
+          p.mass.push_back(src.mass[s]);
+          p.material.push_back(src.material[s]);
+        }
+      }
+  sim.pair_contacts.clear();
+  sim.wall_contacts.clear();
+}
+
+std::pair<Vec3, Vec3> sphere_bounds(const Particles& p) {
+  if (p.size() == 0) return {Vec3::Zero(), Vec3::Zero()};
+  Vec3 lo = p.x[0], hi = p.x[0];
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    lo = lo.cwiseMin(p.x[k] - Vec3::Constant(p.radius[k]));
+    hi = hi.cwiseMax(p.x[k] + Vec3::Constant(p.radius[k]));
+  }
+  return {lo, hi};
+}
+
+}  // namespace dem

@@ -1,0 +1,22 @@
+#pragma once
+// Model generation (SPEC §9, thesis §3.3): random primary sets and tiled copies.
+#include <random>
+
+#include "scene/scene.hpp"
+#include "sim/simulation.hpp"
+
+namespace dem {
+
+// Places spec.count non-overlapping spheres at pseudo-random positions inside spec's box (random
+// sequential addition). Radius uniform in [radius_min, radius_max], materials drawn by fraction.
+// Throws InputError if the box cannot hold them. Same seed, same particles.
+void fill_random(Simulation& sim, const GenerationSpec& spec, std::mt19937_64& rng);
+
+// Tiles the particles nx x ny x nz times with the given period; ids are renumbered 0..N-1 in
+// tile order; velocities are kept, contact history is dropped (the copies settle again).
+void tile(Simulation& sim, int nx, int ny, int nz, const Vec3& period);
+
+// Bounding box of the spheres (centres +- radii): min, max.
+std::pair<Vec3, Vec3> sphere_bounds(const Particles& p);
+
+}  // namespace dem

@@ -1,0 +1,451 @@
+#include "io/checkpoint.hpp"
+
+#include <fcntl.h>
+#include <hdf5.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+
+#include "core/error.hpp"
+#include "core/version.hpp"
+
+namespace dem {
+
+namespace {
+
+// RAII for HDF5 handles.
+struct Handle {
+  hid_t id = -1;
+  herr_t (*close)(hid_t) = nullptr;
+  Handle(hid_t i, herr_t (*c)(hid_t)) : id(i), close(c) {}
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  ~Handle() {
+    if (id >= 0 && close) close(id);
+  }
+  operator hid_t() const { return id; }
+};
+
+class Writer {
+ public:
+  explicit Writer(const std::string& path) : path_(path), file_(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose) {
+    if (file_.id < 0) throw IoError(path + ": cannot create the checkpoint file");
+  }
+  hid_t file() const { return file_; }
+
+  void group(const char* name) {
+    Handle g(H5Gcreate2(file_, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
+    check(g.id, name);
+  }
+
+  // An n-dimensional array; chunked with a Fletcher32 checksum unless empty.
+  void array(const char* name, hid_t memtype, const void* data, std::vector<hsize_t> dims, const char* units) {
+    Handle space(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), H5Sclose);
+    Handle dcpl(H5Pcreate(H5P_DATASET_CREATE), H5Pclose);
+    hsize_t total = 1, row = 1;
+    for (std::size_t k = 0; k < dims.size(); ++k) total *= dims[k], row *= (k ? dims[k] : 1);
+    if (total > 0) {
+      std::vector<hsize_t> chunk = dims;
+      chunk[0] = std::max<hsize_t>(1, std::min<hsize_t>(dims[0], (1u << 16) / row));
+      H5Pset_chunk(dcpl, static_cast<int>(chunk.size()), chunk.data());
+      H5Pset_fletcher32(dcpl);
+    }
+    Handle ds(H5Dcreate2(file_, name, memtype, space, H5P_DEFAULT, dcpl, H5P_DEFAULT), H5Dclose);
+    check(ds.id, name);
+    if (total > 0) check(H5Dwrite(ds, memtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), name);
+    if (units) string_attribute(ds, "units", units);
+  }
+  void vec3s(const char* name, const std::vector<Vec3>& v, const char* units) {
+    array(name, H5T_NATIVE_DOUBLE, v.empty() ? nullptr : v.front().data(), {v.size(), 3}, units);
+  }
+  void doubles(const char* name, const std::vector<double>& v, const char* units) {
+    array(name, H5T_NATIVE_DOUBLE, v.data(), {v.size()}, units);
+  }
+  void int64s(const char* name, const std::vector<std::int64_t>& v, std::vector<hsize_t> dims = {}) {
+    if (dims.empty()) dims = {v.size()};
+    array(name, H5T_NATIVE_INT64, v.data(), dims, nullptr);
+  }
+  void int32s(const char* name, const std::vector<int>& v) { array(name, H5T_NATIVE_INT, v.data(), {v.size()}, nullptr); }
+  void scalar(const char* name, double v, const char* units) { array(name, H5T_NATIVE_DOUBLE, &v, {1}, units); }
+  void scalar(const char* name, std::int64_t v) { array(name, H5T_NATIVE_INT64, &v, {1}, nullptr); }
+  // Strings as fixed-length byte strings so that the checksum covers their bytes.
+  void strings(const char* name, const std::vector<std::string>& v) {
+    std::size_t len = 1;
+    for (const std::string& s : v) len = std::max(len, s.size());
+    std::vector<char> buf(v.size() * len, '\0');
+    for (std::size_t k = 0; k < v.size(); ++k) std::memcpy(buf.data() + k * len, v[k].data(), v[k].size());
+    Handle t(H5Tcopy(H5T_C_S1), H5Tclose);
+    H5Tset_size(t, len);
+    H5Tset_strpad(t, H5T_STR_NULLPAD);
+    H5Tset_cset(t, H5T_CSET_UTF8);
+    array(name, t, buf.data(), {v.size()}, nullptr);
+  }
+  void string_attribute(hid_t obj, const char* name, const std::string& value) {
+    Handle t(H5Tcopy(H5T_C_S1), H5Tclose);
+    H5Tset_size(t, std::max<std::size_t>(1, value.size()));
+    H5Tset_strpad(t, H5T_STR_NULLPAD);
+    H5Tset_cset(t, H5T_CSET_UTF8);
+    Handle space(H5Screate(H5S_SCALAR), H5Sclose);
+    Handle a(H5Acreate2(obj, name, t, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
+    check(a.id, name);
+    check(H5Awrite(a, t, value.c_str()), name);
+  }
+  void int_attribute(hid_t obj, const char* name, int value) {
+    Handle space(H5Screate(H5S_SCALAR), H5Sclose);
+    Handle a(H5Acreate2(obj, name, H5T_NATIVE_INT, space, H5P_DEFAULT, H5P_DEFAULT), H5Aclose);
+    check(a.id, name);
+    check(H5Awrite(a, H5T_NATIVE_INT, &value), name);
+  }
+
+  void close() {
+    if (H5Fclose(file_.id) < 0) throw IoError(path_ + ": writing the checkpoint failed (disk full?)");
+    file_.id = -1;
+  }
+
+ private:
+  void check(long status, const char* what) const {
+    if (status < 0) throw IoError(path_ + ": writing '" + what + "' failed (disk full or file system error?)");
+  }
+  std::string path_;
+  Handle file_;
+};
+
+class Reader {
+ public:
+  explicit Reader(const std::string& path) : path_(path), file_(-1, H5Fclose) {
+    if (!std::filesystem::exists(path)) throw IoError(path + ": no such checkpoint file");
+    if (H5Fis_hdf5(path.c_str()) <= 0)
+      throw IoError(path + ": not an HDF5 file, or truncated/damaged beyond reading (expected a dem checkpoint)");
+    file_.id = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    if (file_.id < 0) throw IoError(path + ": cannot open the HDF5 file (truncated or damaged?)");
+    const std::string format = string_attribute("format");
+    if (format != kCheckpointFormat)
+      throw IoError(path + ": an HDF5 file but not a dem checkpoint (attribute 'format' is \"" + format + "\", expected \"" +
+                    kCheckpointFormat + "\")");
+    const int schema = int_attribute("schema_version");
+    if (schema != kCheckpointSchema)
+      throw IoError(path + ": checkpoint schema version " + std::to_string(schema) + " is not supported (this build reads version " +
+                    std::to_string(kCheckpointSchema) + ")");
+  }
+
+  std::string string_attribute(const char* name) {
+    if (H5Aexists(file_, name) <= 0) return "";
+    Handle a(H5Aopen(file_, name, H5P_DEFAULT), H5Aclose);
+    Handle t(H5Aget_type(a), H5Tclose);
+    if (H5Tget_class(t) != H5T_STRING || H5Tis_variable_str(t) > 0) return "";
+    std::string s(H5Tget_size(t), '\0');
+    Handle mt(H5Tcopy(t), H5Tclose);
+    if (H5Aread(a, mt, s.data()) < 0) throw IoError(path_ + ": cannot read attribute '" + name + "' (damaged file)");
+    return s.substr(0, s.find('\0'));
+  }
+  int int_attribute(const char* name) {
+    if (H5Aexists(file_, name) <= 0) throw IoError(path_ + ": attribute '" + name + "' missing: not a complete dem checkpoint");
+    Handle a(H5Aopen(file_, name, H5P_DEFAULT), H5Aclose);
+    int v = 0;
+    if (H5Aread(a, H5T_NATIVE_INT, &v) < 0) throw IoError(path_ + ": cannot read attribute '" + name + "' (damaged file)");
+    return v;
+  }
+
+  // Opens a dataset and checks its shape: dims[k] = -1 accepts any extent.
+  std::vector<hsize_t> open(const char* name, std::vector<long> expect, Handle& ds) {
+    if (H5Lexists(file_, name, H5P_DEFAULT) <= 0 && !group_path_exists(name))
+      throw IoError(path_ + ": dataset '" + name + "' is missing: not a complete dem checkpoint");
+    ds.id = H5Dopen2(file_, name, H5P_DEFAULT);
+    if (ds.id < 0) throw IoError(path_ + ": dataset '" + name + "' is missing or damaged");
+    Handle space(H5Dget_space(ds), H5Sclose);
+    const int rank = H5Sget_simple_extent_ndims(space);
+    std::vector<hsize_t> dims(std::max(rank, 0));
+    if (rank > 0) H5Sget_simple_extent_dims(space, dims.data(), nullptr);
+    bool ok = rank == static_cast<int>(expect.size());
+    for (std::size_t k = 0; ok && k < expect.size(); ++k) ok = expect[k] < 0 || dims[k] == static_cast<hsize_t>(expect[k]);
+    if (!ok) throw IoError(path_ + ": dataset '" + name + "' has an unexpected shape (damaged or foreign file)");
+    return dims;
+  }
+  void read(const Handle& ds, const char* name, hid_t memtype, void* out) {
+    if (H5Dread(ds, memtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, out) < 0)
+      throw IoError(path_ + ": dataset '" + name + "' fails its checksum or cannot be read: the file is damaged");
+  }
+  template <class T>
+  std::vector<T> values(const char* name, hid_t memtype, std::vector<long> expect) {
+    Handle ds(-1, H5Dclose);
+    const std::vector<hsize_t> dims = open(name, expect, ds);
+    hsize_t total = 1;
+    for (hsize_t d : dims) total *= d;
+    std::vector<T> v(total);
+    if (!v.empty()) read(ds, name, memtype, v.data());
+    return v;
+  }
+  template <class T>
+  std::vector<T> values(const char* name, hid_t memtype, long n, long cols = 0) {
+    return cols ? values<T>(name, memtype, std::vector<long>{n, cols}) : values<T>(name, memtype, std::vector<long>{n});
+  }
+  std::vector<double> doubles(const char* name, long n = -1) { return values<double>(name, H5T_NATIVE_DOUBLE, n); }
+  std::vector<std::int64_t> int64s(const char* name, long n = -1, long cols = 0) { return values<std::int64_t>(name, H5T_NATIVE_INT64, n, cols); }
+  std::vector<int> int32s(const char* name, long n = -1) { return values<int>(name, H5T_NATIVE_INT, n); }
+  std::vector<Vec3> vec3s(const char* name, long n = -1) {
+    const std::vector<double> flat = values<double>(name, H5T_NATIVE_DOUBLE, n, 3);
+    std::vector<Vec3> v(flat.size() / 3);
+    for (std::size_t k = 0; k < v.size(); ++k) v[k] = Vec3(flat[3 * k], flat[3 * k + 1], flat[3 * k + 2]);
+    return v;
+  }
+  double scalar(const char* name) { return doubles(name, 1)[0]; }
+  std::int64_t scalar_int(const char* name) { return int64s(name, 1)[0]; }
+  std::vector<std::string> strings(const char* name, long n = -1) {
+    Handle ds(-1, H5Dclose);
+    const std::vector<hsize_t> dims = open(name, {n}, ds);
+    Handle t(H5Dget_type(ds), H5Tclose);
+    if (H5Tget_class(t) != H5T_STRING || H5Tis_variable_str(t) > 0)
+      throw IoError(path_ + ": dataset '" + name + "' is not a fixed-length string array (foreign file)");
+    const std::size_t len = H5Tget_size(t);
+    std::vector<char> buf(dims[0] * len);
+    if (!buf.empty()) read(ds, name, t, buf.data());
+    std::vector<std::string> out(dims[0]);
+    for (std::size_t k = 0; k < out.size(); ++k) {
+      std::string s(buf.data() + k * len, len);
+      out[k] = s.substr(0, s.find('\0'));
+    }
+    return out;
+  }
+
+ private:
+  bool group_path_exists(const char* name) {
+    // H5Lexists fails on a missing intermediate group; check each component.
+    std::string p;
+    std::string full(name);
+    std::size_t pos = 1;
+    while ((pos = full.find('/', pos)) != std::string::npos) {
+      if (H5Lexists(file_, full.substr(0, pos).c_str(), H5P_DEFAULT) <= 0) return false;
+      ++pos;
+    }
+    return H5Lexists(file_, name, H5P_DEFAULT) > 0;
+  }
+  std::string path_;
+  Handle file_;
+};
+
+void silence_hdf5() {
+  static bool done = false;
+  if (!done) H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr), done = true;  // we report errors ourselves
+}
+
+void fsync_path(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY);
+  if (fd < 0) throw IoError(path + ": cannot reopen the written checkpoint for fsync");
+  const int rc = ::fsync(fd);
+  ::close(fd);
+  if (rc != 0) throw IoError(path + ": fsync failed (disk full or file system error?)");
+}
+
+void write_all(Writer& w, const Simulation& sim, const CheckpointMeta& meta) {
+  const hid_t f = w.file();
+  w.string_attribute(f, "format", kCheckpointFormat);
+  w.int_attribute(f, "schema_version", kCheckpointSchema);
+  w.string_attribute(f, "writer", meta.writer);
+  w.string_attribute(f, "writer_version", kVersion);
+
+  w.group("/scene");
+  w.strings("/scene/text", {meta.scene_text});
+  w.strings("/scene/path", {meta.scene_path});
+
+  w.group("/state");
+  w.scalar("/state/time", sim.time, "s");
+  w.scalar("/state/step", static_cast<std::int64_t>(sim.step));
+  w.scalar("/state/dt", sim.dt, "s");
+  w.vec3s("/state/gravity", {sim.params.gravity}, "m/s^2");
+  w.scalar("/state/alpha_r", sim.params.alpha_r, "1/s");
+  w.scalar("/state/alpha_theta", sim.params.alpha_theta, "1/s");
+
+  w.group("/run");
+  w.strings("/run/stage", {meta.run.stage});
+  w.scalar("/run/stage_start_step", meta.run.stage_start_step);
+  w.scalar("/run/stage_steps", meta.run.stage_steps);
+  w.scalar("/run/stage_start_time", meta.run.stage_start_time, "s");
+  w.doubles("/run/frame_times", meta.run.frame_times, "s");
+
+  const Particles& p = sim.particles;
+  w.group("/particles");
+  w.int64s("/particles/id", p.id);
+  w.vec3s("/particles/position", p.x, "m");
+  w.vec3s("/particles/velocity", p.v, "m/s");
+  w.vec3s("/particles/angular_velocity", p.w, "rad/s");
+  w.vec3s("/particles/reference_position", p.x_ref, "m");
+  w.doubles("/particles/radius", p.radius, "m");
+  w.doubles("/particles/mass", p.mass, "kg");
+  w.int32s("/particles/material", p.material);
+
+  const std::vector<Material>& mats = sim.materials.materials();
+  auto field = [&](auto get) {
+    std::vector<double> v;
+    for (const Material& m : mats) v.push_back(get(m));
+    return v;
+  };
+  w.group("/materials");
+  {
+    std::vector<std::string> names;
+    for (const Material& m : mats) names.push_back(m.name);
+    w.strings("/materials/name", names);
+  }
+  w.doubles("/materials/density", field([](const Material& m) { return m.density; }), "kg/m^3");
+  w.doubles("/materials/kn", field([](const Material& m) { return m.kn; }), "N/m");
+  w.doubles("/materials/kt", field([](const Material& m) { return m.kt; }), "N/m");
+  w.doubles("/materials/friction_angle", field([](const Material& m) { return m.friction_angle; }), "degree");
+  w.doubles("/materials/restitution", field([](const Material& m) { return m.restitution; }), "1");
+  w.doubles("/materials/tangential_restitution", field([](const Material& m) { return m.restitution_t; }), "1");
+  const MixingRules& mix = sim.materials.rules();
+  w.int32s("/materials/mixing", {static_cast<int>(mix.stiffness), static_cast<int>(mix.friction), static_cast<int>(mix.restitution)});
+
+  auto contacts = [&](const char* ids, const char* spring, const ContactList& c) {
+    std::vector<std::int64_t> k(2 * c.size());
+    for (std::size_t i = 0; i < c.size(); ++i) k[2 * i] = c.key_i[i], k[2 * i + 1] = c.key_j[i];
+    w.int64s(ids, k, {c.size(), 2});
+    w.vec3s(spring, c.spring, "N");
+  };
+  w.group("/contacts");
+  contacts("/contacts/pair_ids", "/contacts/pair_spring", sim.pair_contacts);
+  contacts("/contacts/wall_ids", "/contacts/wall_spring", sim.wall_contacts);
+
+  w.group("/walls");
+  const std::size_t nw = sim.walls.size();
+  std::vector<std::string> names;
+  std::vector<int> material, nvert, kind;
+  std::vector<Vec3> base(4 * nw, Vec3::Zero()), current(4 * nw, Vec3::Zero()), vel, dir;
+  std::vector<double> freq, amp, t0;
+  for (std::size_t k = 0; k < nw; ++k) {
+    const Wall& wl = sim.walls[k];
+    names.push_back(wl.name);
+    material.push_back(wl.material);
+    nvert.push_back(static_cast<int>(wl.base.size()));
+    const std::vector<Vec3> now = wl.vertices_at(sim.time);
+    for (std::size_t v = 0; v < wl.base.size(); ++v) base[4 * k + v] = wl.base[v], current[4 * k + v] = now[v];
+    kind.push_back(static_cast<int>(wl.motion.kind));
+    vel.push_back(wl.motion.velocity);
+    dir.push_back(wl.motion.direction);
+    freq.push_back(wl.motion.frequency);
+    amp.push_back(wl.motion.amplitude);
+    t0.push_back(wl.motion.t0);
+  }
+  w.strings("/walls/name", names);
+  w.int32s("/walls/material", material);
+  w.int32s("/walls/vertex_count", nvert);
+  w.array("/walls/base_vertices", H5T_NATIVE_DOUBLE, nw ? base.front().data() : nullptr, {nw, 4, 3}, "m");
+  w.array("/walls/vertices", H5T_NATIVE_DOUBLE, nw ? current.front().data() : nullptr, {nw, 4, 3}, "m");
+  w.int32s("/walls/motion_kind", kind);
+  w.vec3s("/walls/motion_velocity", vel, "m/s");
+  w.vec3s("/walls/motion_direction", dir, "1");
+  w.doubles("/walls/motion_frequency", freq, "Hz");
+  w.doubles("/walls/motion_amplitude", amp, "m");
+  w.doubles("/walls/motion_t0", t0, "s");
+}
+
+}  // namespace
+
+void write_checkpoint(const std::string& path, const Simulation& sim, const CheckpointMeta& meta) {
+  silence_hdf5();
+  const std::string tmp = path + ".tmp";
+  try {
+    std::filesystem::path parent = std::filesystem::path(path).parent_path();
+    if (!parent.empty()) std::filesystem::create_directories(parent);
+    {
+      Writer w(tmp);
+      write_all(w, sim, meta);
+      w.close();
+    }
+    fsync_path(tmp);
+    if (std::rename(tmp.c_str(), path.c_str()) != 0) throw IoError(path + ": cannot rename the finished checkpoint into place");
+    // Make the rename itself durable: fsync the directory that holds the entry.
+    const std::filesystem::path dir = std::filesystem::path(path).parent_path();
+    fsync_path(dir.empty() ? std::string(".") : dir.string());
+  } catch (const std::filesystem::filesystem_error& e) {
+    std::remove(tmp.c_str());
+    throw IoError(path + ": " + e.what());
+  } catch (...) {
+    std::remove(tmp.c_str());  // never leave a half-written file behind; `path` is untouched
+    throw;
+  }
+}
+
+void read_checkpoint(const std::string& path, Simulation& sim, CheckpointMeta& meta) {
+  silence_hdf5();
+  Reader r(path);
+  meta.writer = r.string_attribute("writer");
+  meta.writer_version = r.string_attribute("writer_version");
+  meta.scene_text = r.strings("/scene/text", 1)[0];
+  meta.scene_path = r.strings("/scene/path", 1)[0];
+
+  sim.time = r.scalar("/state/time");
+  sim.step = r.scalar_int("/state/step");
+  sim.dt = r.scalar("/state/dt");
+  sim.params.gravity = r.vec3s("/state/gravity", 1)[0];
+  sim.params.alpha_r = r.scalar("/state/alpha_r");
+  sim.params.alpha_theta = r.scalar("/state/alpha_theta");
+
+  meta.run.stage = r.strings("/run/stage", 1)[0];
+  meta.run.stage_start_step = r.scalar_int("/run/stage_start_step");
+  meta.run.stage_steps = r.scalar_int("/run/stage_steps");
+  meta.run.stage_start_time = r.scalar("/run/stage_start_time");
+  meta.run.frame_times = r.doubles("/run/frame_times");
+
+  Particles& p = sim.particles;
+  p.id = r.int64s("/particles/id");
+  const long n = static_cast<long>(p.id.size());
+  p.x = r.vec3s("/particles/position", n);
+  p.v = r.vec3s("/particles/velocity", n);
+  p.w = r.vec3s("/particles/angular_velocity", n);
+  p.x_ref = r.vec3s("/particles/reference_position", n);
+  p.radius = r.doubles("/particles/radius", n);
+  p.mass = r.doubles("/particles/mass", n);
+  p.material = r.int32s("/particles/material", n);
+
+  const std::vector<std::string> names = r.strings("/materials/name");
+  const long nm = static_cast<long>(names.size());
+  const std::vector<double> density = r.doubles("/materials/density", nm), kn = r.doubles("/materials/kn", nm),
+                            kt = r.doubles("/materials/kt", nm), phi = r.doubles("/materials/friction_angle", nm),
+                            eta = r.doubles("/materials/restitution", nm), eta_t = r.doubles("/materials/tangential_restitution", nm);
+  const std::vector<int> mix = r.int32s("/materials/mixing", 3);
+  std::vector<Material> mats(nm);
+  for (long k = 0; k < nm; ++k) mats[k] = {names[k], density[k], kn[k], kt[k], phi[k], eta[k], eta_t[k], NormalLaw::Cundall};
+  for (int m : mix)
+    if (m < 0 || m > 3) throw IoError(path + ": /materials/mixing holds an unknown rule (damaged file)");
+  sim.materials = MaterialTable(mats, {static_cast<MixRule>(mix[0]), static_cast<MixRule>(mix[1]), static_cast<MixRule>(mix[2])});
+  for (int m : p.material)
+    if (m < 0 || m >= nm) throw IoError(path + ": /particles/material refers to a material that does not exist (damaged file)");
+
+  auto contacts = [&](const char* ids, const char* spring, ContactList& c) {
+    const std::vector<std::int64_t> k = r.int64s(ids, -1, 2);
+    const long nc = static_cast<long>(k.size() / 2);
+    const std::vector<Vec3> s = r.vec3s(spring, nc);
+    c.resize(nc);
+    for (long i = 0; i < nc; ++i) {
+      c.key_i[i] = k[2 * i];
+      c.key_j[i] = k[2 * i + 1];
+      c.slot_i[i] = c.slot_j[i] = -1;  // found again from positions at the next step
+      c.spring[i] = s[i];
+    }
+  };
+  contacts("/contacts/pair_ids", "/contacts/pair_spring", sim.pair_contacts);
+  contacts("/contacts/wall_ids", "/contacts/wall_spring", sim.wall_contacts);
+
+  const std::vector<std::string> wnames = r.strings("/walls/name");
+  const long nw = static_cast<long>(wnames.size());
+  const std::vector<int> wmat = r.int32s("/walls/material", nw), nvert = r.int32s("/walls/vertex_count", nw),
+                         kind = r.int32s("/walls/motion_kind", nw);
+  const std::vector<double> base = r.values<double>("/walls/base_vertices", H5T_NATIVE_DOUBLE, std::vector<long>{nw, 4, 3});
+  const std::vector<Vec3> vel = r.vec3s("/walls/motion_velocity", nw), dir = r.vec3s("/walls/motion_direction", nw);
+  const std::vector<double> freq = r.doubles("/walls/motion_frequency", nw), amp = r.doubles("/walls/motion_amplitude", nw),
+                            t0 = r.doubles("/walls/motion_t0", nw);
+  sim.walls.assign(nw, Wall{});
+  for (long k = 0; k < nw; ++k) {
+    Wall& wl = sim.walls[k];
+    wl.name = wnames[k];
+    wl.material = wmat[k];
+    if (nvert[k] < 3 || nvert[k] > 4 || wmat[k] < 0 || wmat[k] >= nm || kind[k] < 0 || kind[k] > 2)
+      throw IoError(path + ": wall '" + wl.name + "' has invalid data (damaged file)");
+    for (int v = 0; v < nvert[k]; ++v) wl.base.emplace_back(base[12 * k + 3 * v], base[12 * k + 3 * v + 1], base[12 * k + 3 * v + 2]);
+    wl.motion = {static_cast<WallMotion::Kind>(kind[k]), vel[k], dir[k], freq[k], amp[k], t0[k]};
+  }
+}
+
+}  // namespace dem

@@ -1,0 +1,36 @@
+#pragma once
+// The HDF5 checkpoint (DESIGN.md "The checkpoint"; schema in docs/checkpoint.md): everything needed
+// to continue a run bit-exactly. Written atomically (temporary name, fsync, rename); every dataset
+// carries a Fletcher32 checksum so damage is detected instead of read as wrong numbers.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "sim/simulation.hpp"
+
+namespace dem {
+
+inline constexpr int kCheckpointSchema = 1;
+inline constexpr const char* kCheckpointFormat = "dem-checkpoint";
+
+// Where a run-stage run stands, so that --restart continues exactly.
+struct RunInfo {
+  std::string stage;                 // stage name, or the tool name outside run-stage ("gen-primary", ...)
+  std::int64_t stage_start_step = 0; // step count when the stage began
+  std::int64_t stage_steps = 0;      // steps the stage takes in all
+  double stage_start_time = 0;       // [s]
+  std::vector<double> frame_times;   // times of the VTK frames written so far in this stage [s]
+};
+
+struct CheckpointMeta {
+  std::string writer;          // tool that wrote the file
+  std::string writer_version;  // filled on read; kVersion on write
+  std::string scene_path, scene_text;
+  RunInfo run;
+};
+
+void write_checkpoint(const std::string& path, const Simulation& sim, const CheckpointMeta& meta);
+// Throws IoError for a missing, truncated, damaged or foreign file, with the reason.
+void read_checkpoint(const std::string& path, Simulation& sim, CheckpointMeta& meta);
+
+}  // namespace dem

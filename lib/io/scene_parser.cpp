@@ -1,0 +1,532 @@
+#include "io/scene_parser.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <set>
+#include <sstream>
+#include <toml++/toml.h>
+
+#include "core/error.hpp"
+
+namespace dem {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+std::string show(const toml::node& n) {
+  std::ostringstream s;
+  if (n.is_string()) s << '"' << *n.value<std::string>() << '"';
+  else if (n.is_table()) s << "{...}";
+  else if (n.is_array()) s << "[...]";
+  else if (n.is_boolean()) s << (*n.value<bool>() ? "true" : "false");
+  else if (n.is_integer()) s << *n.value<int64_t>();
+  else if (n.is_floating_point()) s << *n.value<double>();
+  else s << "(date/time)";
+  return s.str();
+}
+
+const char* type_name(const toml::node& n) {
+  switch (n.type()) {
+    case toml::node_type::string: return "a string";
+    case toml::node_type::integer: return "an integer";
+    case toml::node_type::floating_point: return "a number";
+    case toml::node_type::boolean: return "a boolean";
+    case toml::node_type::table: return "a table";
+    case toml::node_type::array: return "an array";
+    default: return "a date/time";
+  }
+}
+
+// One TOML table being read: remembers which keys were used so that unknown keys are rejected,
+// and formats every message as "file:line:col: where.key = value: problem".
+class TableReader {
+ public:
+  TableReader(const toml::table& t, std::string file, std::string where)
+      : t_(t), file_(std::move(file)), where_(std::move(where)) {}
+
+  [[noreturn]] void fail_at(const toml::node* n, const std::string& key, const std::string& msg) const {
+    std::ostringstream s;
+    const toml::source_region& src = n ? n->source() : t_.source();
+    s << file_ << ':' << src.begin.line << ':' << src.begin.column << ": " << name(key);
+    if (n) s << " = " << show(*n);
+    s << ": " << msg;
+    throw InputError(s.str());
+  }
+  [[noreturn]] void fail(const std::string& key, const std::string& msg) const { fail_at(t_.get(key), key, msg); }
+
+  std::string name(const std::string& key) const { return where_.empty() ? key : where_ + "." + key; }
+  bool has(const std::string& key) {
+    used_.insert(key);
+    return t_.contains(key);
+  }
+  const toml::node* node(const std::string& key) {
+    used_.insert(key);
+    return t_.get(key);
+  }
+  const toml::node& required(const std::string& key) {
+    const toml::node* n = node(key);
+    if (!n) {
+      std::ostringstream s;
+      s << file_ << ':' << t_.source().begin.line << ": " << name(key) << " is missing (required)";
+      throw InputError(s.str());
+    }
+    return *n;
+  }
+
+  // A number in [lo, hi] (open ends when lo_open / hi_open). `unit` is shown in messages.
+  double number_of(const toml::node& n, const std::string& key, double lo, double hi, const char* unit,
+                   bool lo_open = false, bool hi_open = false) const {
+    if (!n.is_number()) fail_at(&n, key, std::string("expected a number [") + unit + "], got " + type_name(n));
+    const double v = *n.value<double>();
+    const bool below = lo_open ? !(v > lo) : !(v >= lo);
+    const bool above = hi_open ? !(v < hi) : !(v <= hi);
+    if (!std::isfinite(v) || below || above) {
+      std::ostringstream s;
+      s << "out of range: allowed " << (lo_open ? "(" : "[") << lo << ", " << hi << (hi_open || std::isinf(hi) ? ")" : "]") << " " << unit;
+      fail_at(&n, key, s.str());
+    }
+    return v;
+  }
+  double number(const std::string& key, double lo, double hi, const char* unit, bool lo_open = false, bool hi_open = false) {
+    return number_of(required(key), key, lo, hi, unit, lo_open, hi_open);
+  }
+  double number_or(const std::string& key, double def, double lo, double hi, const char* unit, bool lo_open = false,
+                   bool hi_open = false) {
+    const toml::node* n = node(key);
+    return n ? number_of(*n, key, lo, hi, unit, lo_open, hi_open) : def;
+  }
+  long integer_or(const std::string& key, long def, long lo, long hi) {
+    const toml::node* n = node(key);
+    if (!n) return def;
+    if (!n->is_integer()) fail_at(n, key, std::string("expected an integer, got ") + type_name(*n));
+    const long v = static_cast<long>(*n->value<int64_t>());
+    if (v < lo || v > hi) fail_at(n, key, "out of range: allowed [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    return v;
+  }
+  long integer(const std::string& key, long lo, long hi) {
+    required(key);
+    return integer_or(key, 0, lo, hi);
+  }
+  bool boolean_or(const std::string& key, bool def) {
+    const toml::node* n = node(key);
+    if (!n) return def;
+    if (!n->is_boolean()) fail_at(n, key, std::string("expected true or false, got ") + type_name(*n));
+    return *n->value<bool>();
+  }
+  std::string string_of(const toml::node& n, const std::string& key) const {
+    if (!n.is_string()) fail_at(&n, key, std::string("expected a string, got ") + type_name(n));
+    return *n.value<std::string>();
+  }
+  std::string string(const std::string& key) { return string_of(required(key), key); }
+  // A string from a fixed set of choices.
+  std::string choice(const std::string& key, const std::vector<std::string>& allowed, const std::string* def = nullptr) {
+    const toml::node* n = node(key);
+    if (!n && def) return *def;
+    const std::string v = string_of(n ? *n : required(key), key);
+    for (const std::string& a : allowed)
+      if (a == v) return v;
+    std::string list;
+    for (const std::string& a : allowed) list += (list.empty() ? "" : ", ") + ("\"" + a + "\"");
+    fail_at(n, key, "unknown value: allowed " + list);
+  }
+  Vec3 vec3_of(const toml::node& n, const std::string& key) const {
+    const toml::array* a = n.as_array();
+    if (!a || a->size() != 3) fail_at(&n, key, "expected an array of 3 numbers [x, y, z]");
+    Vec3 v;
+    for (int k = 0; k < 3; ++k) {
+      const toml::node& e = *a->get(k);
+      if (!e.is_number() || !std::isfinite(*e.value<double>())) fail_at(&n, key, "expected an array of 3 finite numbers [x, y, z]");
+      v[k] = *e.value<double>();
+    }
+    return v;
+  }
+  Vec3 vec3(const std::string& key) { return vec3_of(required(key), key); }
+  Vec3 vec3_or(const std::string& key, const Vec3& def) {
+    const toml::node* n = node(key);
+    return n ? vec3_of(*n, key) : def;
+  }
+  const toml::table* subtable(const std::string& key) {
+    const toml::node* n = node(key);
+    if (!n) return nullptr;
+    if (!n->is_table()) fail_at(n, key, std::string("expected a table, got ") + type_name(*n));
+    return n->as_table();
+  }
+  // An array of tables ([[key]]); empty if absent.
+  std::vector<const toml::table*> tables(const std::string& key) {
+    std::vector<const toml::table*> out;
+    const toml::node* n = node(key);
+    if (!n) return out;
+    const toml::array* a = n->as_array();
+    if (!a) fail_at(n, key, std::string("expected an array of tables [[") + key + "]], got " + type_name(*n));
+    for (const toml::node& e : *a) {
+      if (!e.is_table()) fail_at(&e, key, "expected a table in [[" + key + "]]");
+      out.push_back(e.as_table());
+    }
+    return out;
+  }
+
+  // Rejects every key that no reader asked for.
+  void finish() const {
+    for (const auto& [k, v] : t_) {
+      const std::string key(k.str());
+      if (!used_.count(key)) {
+        std::string list;
+        for (const std::string& u : used_) list += (list.empty() ? "" : ", ") + u;
+        fail_at(&v, key, "unknown key (allowed here: " + list + ")");
+      }
+    }
+  }
+
+  const std::string& file() const { return file_; }
+  const std::string& where() const { return where_; }
+
+ private:
+  const toml::table& t_;
+  std::string file_, where_;
+  std::set<std::string> used_;
+};
+
+std::string indexed(const std::string& what, std::size_t k) { return what + "[" + std::to_string(k) + "]"; }
+
+MixRule read_mix(TableReader& r, const std::string& key, MixRule def) {
+  static const std::vector<std::string> names = {"harmonic", "min", "max", "mean"};
+  const std::string defname = names[static_cast<int>(def)];
+  const std::string v = r.choice(key, names, &defname);
+  for (std::size_t k = 0; k < names.size(); ++k)
+    if (names[k] == v) return static_cast<MixRule>(k);
+  return def;
+}
+
+int material_ref(TableReader& r, const std::string& key, const std::vector<Material>& mats) {
+  const toml::node& n = r.required(key);
+  const std::string name = r.string_of(n, key);
+  for (std::size_t k = 0; k < mats.size(); ++k)
+    if (mats[k].name == name) return static_cast<int>(k);
+  std::string list;
+  for (const Material& m : mats) list += (list.empty() ? "" : ", ") + ("\"" + m.name + "\"");
+  r.fail_at(&n, key, "no material of that name (defined: " + list + ")");
+}
+
+SettleSpec read_settle(TableReader& parent, const std::string& key) {
+  SettleSpec s;
+  const toml::table* t = parent.subtable(key);
+  if (!t) return s;
+  TableReader r(*t, parent.file(), parent.name(key));
+  s.ke_ratio = r.number_or("ke_ratio", s.ke_ratio, 0, kInf, "(dimensionless)", true);
+  s.max_time = r.number_or("max_time", s.max_time, 0, kInf, "s", true);
+  s.check_every = r.number_or("check_every", s.check_every, 0, kInf, "s", true);
+  r.finish();
+  return s;
+}
+
+void read_simulation(TableReader& top, Scene& sc) {
+  const toml::table* t = top.subtable("simulation");
+  if (!t) return;
+  TableReader r(*t, top.file(), "simulation");
+  SimulationSpec& s = sc.simulation;
+  s.time_step = r.number_or("time_step", 0.0, 0, kInf, "s (0 = automatic, eq. 2.48)");
+  s.frac = r.number_or("frac", s.frac, 0, 1, "(fraction of the critical step, eq. 2.48)", true);
+  s.force_time_step = r.boolean_or("force_time_step", false);
+  s.gravity = r.vec3_or("gravity", s.gravity);
+  s.alpha_r = r.number_or("alpha_r", 0.0, 0, kInf, "1/s");
+  s.alpha_theta = r.number_or("alpha_theta", 0.0, 0, kInf, "1/s");
+  r.finish();
+}
+
+void read_materials(TableReader& top, Scene& sc) {
+  const auto list = top.tables("material");
+  if (list.empty()) {
+    std::ostringstream s;
+    s << top.file() << ": no [[material]] defined (at least one is required)";
+    throw InputError(s.str());
+  }
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    TableReader r(*list[k], top.file(), indexed("material", k));
+    Material m;
+    m.name = r.string("name");
+    for (const Material& o : sc.materials)
+      if (o.name == m.name) r.fail("name", "duplicate material name");
+    static const std::string cundall = "cundall";
+    r.choice("law", {"cundall"}, &cundall);
+    m.law = NormalLaw::Cundall;
+    m.density = r.number("density", 0, kInf, "kg/m^3", true);
+    m.kn = r.number("kn", 0, kInf, "N/m", true);
+    m.kt = r.number_or("kt", m.kn, 0, kInf, "N/m");
+    m.friction_angle = r.number_or("friction_angle", 0.0, 0, 90, "degrees", false, true);
+    m.restitution = r.number_or("restitution", 1.0, 0, 1, "(eta_n, eq. 2.29)", true);
+    m.restitution_t = r.number_or("tangential_restitution", m.restitution, 0, 1, "(eta_t, eq. 2.29)", true);
+    r.finish();
+    sc.materials.push_back(m);
+  }
+  if (const toml::table* t = top.subtable("mixing")) {
+    TableReader r(*t, top.file(), "mixing");
+    sc.mixing.stiffness = read_mix(r, "stiffness", sc.mixing.stiffness);
+    sc.mixing.friction = read_mix(r, "friction", sc.mixing.friction);
+    sc.mixing.restitution = read_mix(r, "restitution", sc.mixing.restitution);
+    r.finish();
+  }
+}
+
+void add_wall(TableReader& r, Scene& sc, WallSpec w) {
+  for (const WallSpec& o : sc.walls)
+    if (o.name == w.name) r.fail("name", "duplicate wall name \"" + w.name + "\"");
+  const std::string problem = polygon_problem(w.vertices);
+  if (!problem.empty()) r.fail("vertices", problem);
+  sc.walls.push_back(std::move(w));
+}
+
+void read_walls(TableReader& top, Scene& sc) {
+  const auto list = top.tables("wall");
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    TableReader r(*list[k], top.file(), indexed("wall", k));
+    const std::string name = r.string("name");
+    if (name.find('.') != std::string::npos) r.fail("name", "a wall name must not contain '.' (reserved for groups)");
+    const int mat = material_ref(r, "material", sc.materials);
+    const std::string type = r.choice("type", {"polygon", "box"});
+    if (type == "polygon") {
+      const toml::node& vn = r.required("vertices");
+      const toml::array* a = vn.as_array();
+      if (!a || (a->size() != 3 && a->size() != 4)) r.fail_at(&vn, "vertices", "expected 3 or 4 vertices [[x,y,z], ...]");
+      WallSpec w{name, mat, {}};
+      for (const toml::node& e : *a) w.vertices.push_back(r.vec3_of(e, "vertices"));
+      add_wall(r, sc, std::move(w));
+    } else {
+      const Vec3 lo = r.vec3("min"), hi = r.vec3("max");
+      if (!((hi - lo).array() > 0).all()) r.fail("max", "every component of max must exceed min");
+      static const std::vector<std::string> all = {"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"};
+      std::vector<std::string> faces = all;
+      if (const toml::node* fn = r.node("faces")) {
+        const toml::array* a = fn->as_array();
+        if (!a || a->empty()) r.fail_at(fn, "faces", "expected a non-empty array of face names");
+        faces.clear();
+        for (const toml::node& e : *a) {
+          const std::string f = r.string_of(e, "faces");
+          if (std::find(all.begin(), all.end(), f) == all.end())
+            r.fail_at(fn, "faces", "unknown face \"" + f + "\": allowed xmin, xmax, ymin, ymax, zmin, zmax");
+          faces.push_back(f);
+        }
+      }
+      for (const std::string& f : faces) {
+        const int axis = f[0] - 'x';
+        const double c = f.substr(1) == "min" ? lo[axis] : hi[axis];
+        const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+        WallSpec w{name + "." + f, mat, {}};
+        for (const auto& [su, sv] : {std::pair{0, 0}, {1, 0}, {1, 1}, {0, 1}}) {
+          Vec3 p;
+          p[axis] = c;
+          p[u] = su ? hi[u] : lo[u];
+          p[v] = sv ? hi[v] : lo[v];
+          w.vertices.push_back(p);
+        }
+        add_wall(r, sc, std::move(w));
+      }
+    }
+    r.finish();
+  }
+}
+
+void read_generation(TableReader& top, Scene& sc) {
+  const toml::table* t = top.subtable("generation");
+  if (!t) return;
+  TableReader r(*t, top.file(), "generation");
+  GenerationSpec g;
+  g.box_min = r.vec3("box_min");
+  g.box_max = r.vec3("box_max");
+  if (!((g.box_max - g.box_min).array() > 0).all()) r.fail("box_max", "every component of box_max must exceed box_min");
+  g.count = static_cast<int>(r.integer("count", 1, 100000000));
+  g.radius_min = r.number("radius_min", 0, kInf, "m", true);
+  g.radius_max = r.number("radius_max", 0, kInf, "m", true);
+  if (g.radius_min > g.radius_max) r.fail("radius_max", "radius_max must be >= radius_min (" + std::to_string(g.radius_min) + " m)");
+  const double smallest = (g.box_max - g.box_min).minCoeff();
+  if (2 * g.radius_max > smallest) r.fail("radius_max", "a sphere of this radius does not fit in the generation box");
+  g.seed = static_cast<std::uint64_t>(r.integer_or("seed", 1, 0, std::numeric_limits<long>::max()));
+  const toml::node& mn = r.required("materials");
+  const toml::table* mt = mn.as_table();
+  if (!mt || mt->empty()) r.fail_at(&mn, "materials", "expected a table of material = fraction, e.g. { glass = 1.0 }");
+  TableReader mr(*mt, top.file(), "generation.materials");
+  double sum = 0;
+  for (const auto& [k, v] : *mt) {
+    const std::string name(k.str());
+    int idx = -1;
+    for (std::size_t m = 0; m < sc.materials.size(); ++m)
+      if (sc.materials[m].name == name) idx = static_cast<int>(m);
+    if (idx < 0) mr.fail_at(&v, name, "no material of that name");
+    const double f = mr.number(name, 0, 1, "(fraction)", true);
+    sum += f;
+    g.material_fractions.emplace_back(idx, f);
+  }
+  if (std::abs(sum - 1) > 1e-9) r.fail_at(&mn, "materials", "the fractions must sum to 1 (they sum to " + std::to_string(sum) + ")");
+  g.settle = read_settle(r, "settle");
+  r.finish();
+  sc.generation = g;
+}
+
+void read_copy(TableReader& top, Scene& sc) {
+  const toml::table* t = top.subtable("copy");
+  if (!t) return;
+  TableReader r(*t, top.file(), "copy");
+  CopySpec c;
+  c.nx = static_cast<int>(r.integer_or("nx", 1, 1, 1000));
+  c.ny = static_cast<int>(r.integer_or("ny", 1, 1, 1000));
+  c.nz = static_cast<int>(r.integer_or("nz", 1, 1, 1000));
+  if (r.has("spacing")) {
+    c.spacing = r.vec3("spacing");
+    if (!(c.spacing->array() > 0).all()) r.fail("spacing", "every component must be > 0 m");
+  }
+  c.settle = read_settle(r, "settle");
+  r.finish();
+  sc.copy = c;
+}
+
+void read_compact(TableReader& top, Scene& sc) {
+  const toml::table* t = top.subtable("compact");
+  if (!t) return;
+  TableReader r(*t, top.file(), "compact");
+  CompactSpec c;
+  const toml::node& wn = r.required("walls");
+  const toml::array* a = wn.as_array();
+  if (!a || a->empty()) r.fail_at(&wn, "walls", "expected a non-empty array of wall names");
+  for (const toml::node& e : *a) {
+    const std::string w = r.string_of(e, "walls");
+    bool found = false;
+    for (const WallSpec& s : sc.walls) found = found || wall_matches(s.name, w);
+    if (!found) r.fail_at(&wn, "walls", "no wall or wall group named \"" + w + "\"");
+    c.walls.push_back(w);
+  }
+  c.speed = r.number("speed", 0, kInf, "m/s", true);
+  c.target_stress = r.number_or("target_stress", 0.0, 0, kInf, "Pa", true);
+  c.target_porosity = r.number_or("target_porosity", 0.0, 0, 1, "(dimensionless)", true, true);
+  if ((c.target_stress > 0) == (c.target_porosity > 0)) r.fail("target_stress", "give exactly one of target_stress and target_porosity");
+  c.max_time = r.number_or("max_time", c.max_time, 0, kInf, "s", true);
+  c.settle = read_settle(r, "settle");
+  r.finish();
+  sc.compact = c;
+}
+
+Region read_region(TableReader& parent, const std::string& key) {
+  const toml::node& n = parent.required(key);
+  if (!n.is_table()) parent.fail_at(&n, key, "expected a table, e.g. { type = \"box\", min = [...], max = [...] }");
+  TableReader r(*n.as_table(), parent.file(), parent.name(key));
+  Region g;
+  const std::string type = r.choice("type", {"box", "sphere"});
+  if (type == "box") {
+    g.kind = Region::Kind::Box;
+    g.min = r.vec3("min");
+    g.max = r.vec3("max");
+    if (!((g.max - g.min).array() > 0).all()) r.fail("max", "every component of max must exceed min");
+  } else {
+    g.kind = Region::Kind::Sphere;
+    g.centre = r.vec3("centre");
+    g.radius = r.number("radius", 0, kInf, "m", true);
+  }
+  r.finish();
+  return g;
+}
+
+WallMotion read_motion(TableReader& r) {
+  WallMotion m;
+  const std::string type = r.choice("type", {"fixed", "translate", "vibrate"});
+  if (type == "translate") {
+    m.kind = WallMotion::Kind::Translate;
+    m.velocity = r.vec3("velocity");
+  } else if (type == "vibrate") {
+    m.kind = WallMotion::Kind::Vibrate;
+    const Vec3 d = r.vec3("direction");
+    if (!(d.norm() > 0)) r.fail("direction", "the direction must be a non-zero vector");
+    m.direction = d.normalized();
+    m.frequency = r.number("frequency", 0, kInf, "Hz", true);
+    const bool amp = r.has("amplitude"), acc = r.has("acceleration");
+    if (amp == acc) r.fail(amp ? "acceleration" : "amplitude", "give exactly one of amplitude [m] and acceleration [m/s^2]");
+    if (amp) {
+      m.amplitude = r.number("amplitude", 0, kInf, "m", true);
+    } else {
+      // Peak acceleration A (2 pi f)^2, e.g. "3 g" = 29.43 m/s^2 (SPEC §3).
+      const double w = 2 * M_PI * m.frequency;
+      m.amplitude = r.number("acceleration", 0, kInf, "m/s^2", true) / (w * w);
+    }
+  }
+  return m;
+}
+
+void read_stages(TableReader& top, Scene& sc) {
+  const auto list = top.tables("stage");
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    TableReader r(*list[k], top.file(), indexed("stage", k));
+    StageSpec s;
+    s.name = r.string("name");
+    if (s.name.empty() || s.name.find_first_of("/\\ ") != std::string::npos) r.fail("name", "a stage name must be non-empty without '/', '\\' or spaces");
+    if (sc.stage(s.name)) r.fail("name", "duplicate stage name");
+    s.duration = r.number("duration", 0, kInf, "s", true);
+    s.output_every = r.number_or("output_every", 0.0, 0, kInf, "s (0 = first and last frame only)");
+    const auto actions = r.tables("action");
+    for (std::size_t a = 0; a < actions.size(); ++a) {
+      TableReader ar(*actions[a], top.file(), r.name(indexed("action", a)));
+      ActionSpec act;
+      const std::string type = ar.choice("type", {"remove", "reset_reference"});
+      if (type == "remove") {
+        act.kind = ActionSpec::Kind::Remove;
+        act.region = read_region(ar, "region");
+        act.inside = ar.boolean_or("inside", true);
+      } else {
+        act.kind = ActionSpec::Kind::ResetReference;
+      }
+      ar.finish();
+      s.actions.push_back(act);
+    }
+    const auto motions = r.tables("motion");
+    for (std::size_t m = 0; m < motions.size(); ++m) {
+      TableReader mr(*motions[m], top.file(), r.name(indexed("motion", m)));
+      MotionSpec ms;
+      const toml::node& wn = mr.required("wall");
+      ms.wall = mr.string_of(wn, "wall");
+      bool found = false;
+      for (const WallSpec& w : sc.walls) found = found || wall_matches(w.name, ms.wall);
+      if (!found) mr.fail_at(&wn, "wall", "no wall or wall group of that name");
+      ms.motion = read_motion(mr);
+      mr.finish();
+      s.motions.push_back(ms);
+    }
+    r.finish();
+    sc.stages.push_back(std::move(s));
+  }
+}
+
+}  // namespace
+
+Scene parse_scene(const std::string& text, const std::string& path) {
+  toml::table root;
+  try {
+    root = toml::parse(text, path);
+  } catch (const toml::parse_error& e) {
+    std::ostringstream s;
+    s << path << ':' << e.source().begin.line << ':' << e.source().begin.column << ": TOML syntax error: " << e.description();
+    throw InputError(s.str());
+  }
+  Scene sc;
+  sc.path = path;
+  sc.text = text;
+  TableReader top(root, path, "");
+  read_simulation(top, sc);
+  read_materials(top, sc);
+  read_walls(top, sc);
+  read_generation(top, sc);
+  read_copy(top, sc);
+  read_compact(top, sc);
+  read_stages(top, sc);
+  top.finish();
+  return sc;
+}
+
+Scene read_scene_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open the scene file");
+  std::ostringstream s;
+  s << in.rdbuf();
+  return parse_scene(s.str(), path);
+}
+
+}  // namespace dem

@@ -1,0 +1,260 @@
+#include "io/vtk_output.hpp"
+
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkCellType.h>
+#include <vtkCommand.h>
+#include <vtkDoubleArray.h>
+#include <vtkErrorCode.h>
+#include <vtkExecutive.h>
+#include <vtkFieldData.h>
+#include <vtkIdTypeArray.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+#include <vtkStringArray.h>
+#include <vtkTypeInt32Array.h>
+#include <vtkTypeInt64Array.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLPolyDataWriter.h>
+#include <vtkXMLUnstructuredGridWriter.h>
+#include <vtkXMLWriter.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <locale>
+#include <sstream>
+#include <stdexcept>
+
+#include "core/error.hpp"
+
+namespace dem {
+
+void ensure_parent_dir(const std::string& path) {
+  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  if (parent.empty()) return;
+  std::error_code ec;
+  std::filesystem::create_directories(parent, ec);
+  if (ec) throw IoError(path + ": cannot create the directory " + parent.string() + ": " + ec.message());
+}
+
+namespace {
+
+// Writes through `write_tmp(tmp)` to a temporary file and renames it onto `path`, so `path` holds
+// either the old or the complete new content; the temporary never outlives a failure.
+template <class WriteTmp>
+void write_atomically(const std::string& path, WriteTmp&& write_tmp) {
+  ensure_parent_dir(path);
+  const std::string tmp = path + ".tmp";
+  try {
+    write_tmp(tmp);
+    if (std::rename(tmp.c_str(), path.c_str()) != 0)
+      throw IoError(path + ": cannot rename the finished file into place: " + std::strerror(errno));
+  } catch (...) {
+    std::remove(tmp.c_str());
+    throw;
+  }
+}
+
+// Receives the writer's error messages: VTK would otherwise print them to stderr, while we report
+// the failure once, as an IoError carrying the message.
+class ErrorCapture : public vtkCommand {
+ public:
+  static ErrorCapture* New() { return new ErrorCapture; }
+  void Execute(vtkObject*, unsigned long, void* call_data) override {
+    if (call_data != nullptr && message.empty()) message = static_cast<const char*>(call_data);
+  }
+  std::string message;
+};
+
+// VTK's messages read "ERROR: In <source>, line N\n<Class> (0x...): text\n"; keep only the text.
+std::string tidy_vtk_message(const std::string& message) {
+  std::string line;
+  std::istringstream in(message);
+  for (std::string l; std::getline(in, l);)
+    if (!l.empty()) line = l;
+  const std::size_t colon = line.find("): ");
+  return colon == std::string::npos ? line : line.substr(colon + 3);
+}
+
+void run_xml_writer(vtkXMLWriter* writer, vtkDataObject* data, const std::string& path, const std::string& tmp) {
+  auto errors = vtkSmartPointer<ErrorCapture>::New();
+  writer->AddObserver(vtkCommand::ErrorEvent, errors);
+  // The pipeline repeats a writer failure as its own, far less telling, error: silence it too.
+  writer->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, errors);
+  writer->SetInputData(data);
+  writer->SetFileName(tmp.c_str());
+  writer->SetDataModeToAppended();
+  writer->EncodeAppendedDataOff();  // raw binary: a third smaller than base64, and faster
+  writer->SetCompressorTypeToZLib();
+  writer->SetHeaderTypeToUInt64();  // block sizes past 4 GiB for very large particle sets
+  const int ok = writer->Write();
+  const unsigned long code = writer->GetErrorCode();
+  if (ok == 1 && code == vtkErrorCode::NoError && errors->message.empty()) return;
+  std::string reason;
+  if (code > vtkErrorCode::NoError && code < vtkErrorCode::FirstVTKErrorCode)
+    reason = std::strerror(static_cast<int>(code));  // VTK passes the system's errno through
+  else if (code == vtkErrorCode::OutOfDiskSpaceError)
+    reason = "out of disk space";
+  else
+    reason = tidy_vtk_message(errors->message);
+  if (reason.empty()) reason = "the VTK writer failed (error code " + std::to_string(code) + ")";
+  throw IoError(path + ": cannot write " + tmp + ": " + reason);
+}
+
+vtkSmartPointer<vtkDoubleArray> vector_array(const char* name, const std::vector<Vec3>& values) {
+  auto a = vtkSmartPointer<vtkDoubleArray>::New();
+  a->SetName(name);
+  a->SetNumberOfComponents(3);
+  a->SetNumberOfTuples(static_cast<vtkIdType>(values.size()));
+  for (std::size_t i = 0; i < values.size(); ++i) a->SetTypedTuple(static_cast<vtkIdType>(i), values[i].data());
+  return a;
+}
+
+vtkSmartPointer<vtkStringArray> string_array(const char* name, const std::vector<std::string>& values) {
+  auto a = vtkSmartPointer<vtkStringArray>::New();
+  a->SetName(name);
+  a->SetNumberOfValues(static_cast<vtkIdType>(values.size()));
+  for (std::size_t i = 0; i < values.size(); ++i) a->SetValue(static_cast<vtkIdType>(i), values[i]);
+  return a;
+}
+
+std::string xml_escape(const std::string& s) {
+  std::string out;
+  out.reserve(s.size());
+  for (const char c : s) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+void write_particles_vtu(const std::string& path, const Particles& p, const std::vector<std::string>& material_names,
+                         const std::vector<Vec3>* displacement) {
+  const std::size_t n = p.size();
+  if (displacement != nullptr && displacement->size() != n)
+    throw std::invalid_argument("write_particles_vtu: displacement has " + std::to_string(displacement->size()) +
+                                " entries for " + std::to_string(n) + " particles");
+  const auto vn = static_cast<vtkIdType>(n);
+
+  auto points = vtkSmartPointer<vtkPoints>::New();
+  points->SetDataTypeToDouble();  // keep positions exact: float would lose digits at small radii
+  points->SetNumberOfPoints(vn);
+  for (vtkIdType i = 0; i < vn; ++i) points->SetPoint(i, p.x[i].data());
+
+  // Cell i is the vertex on point i; ParaView needs cells to render points with most filters.
+  auto offsets = vtkSmartPointer<vtkIdTypeArray>::New();
+  auto connectivity = vtkSmartPointer<vtkIdTypeArray>::New();
+  offsets->SetNumberOfValues(vn + 1);
+  connectivity->SetNumberOfValues(vn);
+  for (vtkIdType i = 0; i < vn; ++i) {
+    offsets->SetValue(i, i);
+    connectivity->SetValue(i, i);
+  }
+  offsets->SetValue(vn, vn);
+  auto cells = vtkSmartPointer<vtkCellArray>::New();
+  cells->SetData(offsets, connectivity);
+
+  auto grid = vtkSmartPointer<vtkUnstructuredGrid>::New();
+  grid->SetPoints(points);
+  grid->SetCells(VTK_VERTEX, cells);
+
+  auto ids = vtkSmartPointer<vtkTypeInt64Array>::New();
+  ids->SetName("id");
+  ids->SetNumberOfValues(vn);
+  auto radius = vtkSmartPointer<vtkDoubleArray>::New();
+  radius->SetName("radius");
+  radius->SetNumberOfValues(vn);
+  auto material = vtkSmartPointer<vtkTypeInt32Array>::New();
+  material->SetName("material");
+  material->SetNumberOfValues(vn);
+  for (vtkIdType i = 0; i < vn; ++i) {
+    ids->SetValue(i, p.id[i]);
+    radius->SetValue(i, p.radius[i]);
+    material->SetValue(i, p.material[i]);
+  }
+  vtkPointData* pd = grid->GetPointData();
+  pd->AddArray(ids);
+  pd->AddArray(radius);
+  pd->AddArray(vector_array("velocity", p.v));
+  pd->AddArray(vector_array("angular_velocity", p.w));
+  pd->AddArray(material);
+  if (displacement != nullptr) {
+    pd->AddArray(vector_array("displacement", *displacement));
+    auto magnitude = vtkSmartPointer<vtkDoubleArray>::New();
+    magnitude->SetName("displacement_magnitude");
+    magnitude->SetNumberOfValues(vn);
+    for (vtkIdType i = 0; i < vn; ++i) magnitude->SetValue(i, (*displacement)[i].norm());
+    pd->AddArray(magnitude);
+  }
+  grid->GetFieldData()->AddArray(string_array("material_names", material_names));
+
+  write_atomically(path, [&](const std::string& tmp) {
+    auto writer = vtkSmartPointer<vtkXMLUnstructuredGridWriter>::New();
+    run_xml_writer(writer, grid, path, tmp);
+  });
+}
+
+void write_walls_vtp(const std::string& path, const std::vector<Wall>& walls, double time) {
+  auto points = vtkSmartPointer<vtkPoints>::New();
+  points->SetDataTypeToDouble();
+  auto polys = vtkSmartPointer<vtkCellArray>::New();
+  auto wall_index = vtkSmartPointer<vtkTypeInt32Array>::New();
+  wall_index->SetName("wall_index");
+  auto material = vtkSmartPointer<vtkTypeInt32Array>::New();
+  material->SetName("material");
+  std::vector<std::string> names;
+  for (std::size_t k = 0; k < walls.size(); ++k) {
+    const std::vector<Vec3> verts = walls[k].vertices_at(time);
+    std::vector<vtkIdType> cell;
+    for (const Vec3& v : verts) cell.push_back(points->InsertNextPoint(v.data()));
+    polys->InsertNextCell(static_cast<vtkIdType>(cell.size()), cell.data());
+    wall_index->InsertNextValue(static_cast<int>(k));
+    material->InsertNextValue(walls[k].material);
+    names.push_back(walls[k].name);
+  }
+
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
+  poly->SetPoints(points);
+  poly->SetPolys(polys);
+  poly->GetCellData()->AddArray(wall_index);
+  poly->GetCellData()->AddArray(material);
+  poly->GetFieldData()->AddArray(string_array("wall_names", names));
+
+  write_atomically(path, [&](const std::string& tmp) {
+    auto writer = vtkSmartPointer<vtkXMLPolyDataWriter>::New();
+    run_xml_writer(writer, poly, path, tmp);
+  });
+}
+
+void write_pvd(const std::string& path, const std::vector<PvdEntry>& entries) {
+  write_atomically(path, [&](const std::string& tmp) {
+    std::ofstream out(tmp);
+    if (!out) throw IoError(path + ": cannot open " + tmp + " for writing: " + std::strerror(errno));
+    out.imbue(std::locale::classic());  // a decimal point, whatever the user's locale
+    out << std::setprecision(17);        // round-trips every double: frame times match exactly
+    out << "<?xml version=\"1.0\"?>\n"
+        << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+        << "  <Collection>\n";
+    for (const PvdEntry& e : entries)
+      out << "    <DataSet timestep=\"" << e.time << "\" group=\"\" part=\"0\" file=\"" << xml_escape(e.file) << "\"/>\n";
+    out << "  </Collection>\n"
+        << "</VTKFile>\n";
+    out.close();
+    if (!out) throw IoError(path + ": writing failed (disk full or file system error?)");
+  });
+}
+
+}  // namespace dem

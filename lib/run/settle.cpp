@@ -1,0 +1,45 @@
+#include "run/settle.hpp"
+
+#include <cmath>
+
+#include "core/error.hpp"
+#include "run/progress.hpp"
+
+namespace dem {
+
+SettleResult settle(Simulation& sim, const SettleSpec& spec, const std::string& label, bool quiet) {
+  const Particles& p = sim.particles;
+  SettleResult r;
+  const double g = sim.params.gravity.norm();
+  if (!(g > 0)) throw InputError("settling needs gravity: simulation.gravity is zero");
+  if (p.size() == 0) return r;
+  double mass = 0, diameter = 0;
+  for (std::size_t k = 0; k < p.size(); ++k) mass += p.mass[k], diameter += 2 * p.radius[k];
+  const double n = static_cast<double>(p.size());
+  const double scale = (mass / n) * g * (diameter / n);
+  const std::int64_t max_steps = static_cast<std::int64_t>(std::ceil(spec.max_time / sim.dt));
+  const std::int64_t check = std::max<std::int64_t>(1, std::llround(spec.check_every / sim.dt));
+  Progress progress(label, max_steps, quiet);
+  while (r.steps < max_steps) {
+    sim.advance();
+    ++r.steps;
+    progress.update(r.steps, sim.time);
+    if (r.steps % check == 0) {
+      r.ke_ratio = sim.kinetic_energy() / n / scale;
+      if (r.ke_ratio < spec.ke_ratio) {
+        r.converged = true;
+        break;
+      }
+    }
+  }
+  r.ke_ratio = sim.kinetic_energy() / n / scale;
+  progress.finish(r.steps, sim.time);
+  return r;
+}
+
+double coordination_number(const Simulation& sim) {
+  const double n = static_cast<double>(sim.particles.size());
+  return n > 0 ? (2.0 * sim.pair_contacts.size() + sim.wall_contacts.size()) / n : 0.0;
+}
+
+}  // namespace dem

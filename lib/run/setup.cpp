@@ -1,0 +1,93 @@
+#include "run/setup.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+#include "core/error.hpp"
+
+namespace dem {
+
+Simulation simulation_from_scene(const Scene& scene) {
+  Simulation sim;
+  sim.materials = MaterialTable(scene.materials, scene.mixing);
+  for (const WallSpec& w : scene.walls) sim.walls.push_back(Wall{w.name, w.material, w.vertices, WallMotion{}});
+  sim.params.gravity = scene.simulation.gravity;
+  sim.params.alpha_r = scene.simulation.alpha_r;
+  sim.params.alpha_theta = scene.simulation.alpha_theta;
+  return sim;
+}
+
+void adopt_scene(Simulation& sim, const Scene& scene, WallPositions positions) {
+  const MaterialTable old_materials = sim.materials;
+  sim.materials = MaterialTable(scene.materials, scene.mixing);
+  std::vector<int> remap(old_materials.size(), -1);
+  for (std::size_t k = 0; k < old_materials.size(); ++k) remap[k] = sim.materials.index_of(old_materials.materials()[k].name);
+  Particles& p = sim.particles;
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    int& m = p.material[k];
+    if (remap[m] < 0)
+      throw InputError(scene.path + ": the checkpoint's particles use material \"" + old_materials.materials()[m].name +
+                       "\", which this scene does not define");
+    m = remap[m];
+    p.mass[k] = sphere_mass(scene.materials[m].density, p.radius[k]);
+  }
+
+  std::vector<Wall> walls;
+  std::vector<int> wall_remap(sim.walls.size(), -1);
+  for (const WallSpec& spec : scene.walls) {
+    Wall w{spec.name, spec.material, spec.vertices, WallMotion{}};
+    for (std::size_t k = 0; k < sim.walls.size(); ++k)
+      if (sim.walls[k].name == spec.name) {
+        if (positions == WallPositions::FromCheckpoint) w.base = sim.walls[k].vertices_at(sim.time);  // where the previous stage left it
+        wall_remap[k] = static_cast<int>(walls.size());
+      }
+    walls.push_back(std::move(w));
+  }
+  sim.walls = std::move(walls);
+
+  // Wall contact history follows the walls; contacts with walls that are gone are dropped.
+  ContactList& wc = sim.wall_contacts;
+  std::vector<FoundContact> kept;
+  std::vector<Vec3> springs;
+  for (std::size_t k = 0; k < wc.size(); ++k) {
+    const Index w = wc.key_j[k];
+    if (w >= 0 && w < static_cast<Index>(wall_remap.size()) && wall_remap[w] >= 0) {
+      kept.push_back({wc.key_i[k], wall_remap[w], -1, -1});
+      springs.push_back(wc.spring[k]);
+    }
+  }
+  std::vector<std::size_t> order(kept.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return kept[a] < kept[b]; });
+  wc.resize(kept.size());
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    wc.key_i[k] = kept[order[k]].key_i;
+    wc.key_j[k] = kept[order[k]].key_j;
+    wc.slot_i[k] = wc.slot_j[k] = -1;
+    wc.spring[k] = springs[order[k]];
+  }
+
+  sim.params.gravity = scene.simulation.gravity;
+  sim.params.alpha_r = scene.simulation.alpha_r;
+  sim.params.alpha_theta = scene.simulation.alpha_theta;
+}
+
+double choose_time_step(const Simulation& sim, const SimulationSpec& spec) {
+  const double critical = sim.critical_time_step();
+  if (spec.time_step == 0) {
+    if (!std::isfinite(critical)) throw InputError("cannot compute the time step of eq. 2.48: no particles or no stiffness");
+    return spec.frac * critical;
+  }
+  if (spec.time_step > critical && !spec.force_time_step) {
+    std::ostringstream m;
+    m << "simulation.time_step = " << spec.time_step << " s exceeds the critical time step " << critical
+      << " s of eq. 2.48 (2 sqrt(M_min / (2 K_max))); lower it, omit it for the automatic step, or set "
+         "simulation.force_time_step = true";
+    throw InputError(m.str());
+  }
+  return spec.time_step;
+}
+
+}  // namespace dem

@@ -1,0 +1,121 @@
+#include "run/stage_runner.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+
+#include "core/error.hpp"
+#include "io/checkpoint.hpp"
+#include "io/scene_parser.hpp"
+#include "io/vtk_output.hpp"
+#include "run/frames.hpp"
+#include "run/progress.hpp"
+#include "run/setup.hpp"
+
+namespace dem {
+
+std::string restart_path(const std::string& out) {
+  const std::string ext = ".h5";
+  if (out.size() > ext.size() && out.compare(out.size() - ext.size(), ext.size(), ext) == 0)
+    return out.substr(0, out.size() - ext.size()) + ".restart.h5";
+  return out + ".restart.h5";
+}
+
+namespace {
+
+void apply_actions(Simulation& sim, const StageSpec& stage) {
+  Particles& p = sim.particles;
+  for (const ActionSpec& a : stage.actions) {
+    if (a.kind == ActionSpec::Kind::ResetReference) {
+      p.x_ref = p.x;
+    } else {
+      std::vector<bool> keep(p.size());
+      std::size_t removed = 0;
+      for (std::size_t k = 0; k < p.size(); ++k) {
+        keep[k] = a.region.contains(p.x[k]) != a.inside;
+        removed += !keep[k];
+      }
+      p.keep_only(keep);
+      std::cerr << "stage " << stage.name << ": removed " << removed << " particles, " << p.size() << " remain\n";
+    }
+  }
+}
+
+void start_motions(Simulation& sim, const StageSpec& stage) {
+  for (Wall& w : sim.walls) {
+    WallMotion m;  // fixed unless the stage says otherwise; the last matching entry wins
+    for (const MotionSpec& ms : stage.motions)
+      if (wall_matches(w.name, ms.wall)) m = ms.motion;
+    w.start_motion(m, sim.time);
+  }
+}
+
+}  // namespace
+
+void run_stage(const StageOptions& o) {
+  const Scene scene = read_scene_file(o.scene);
+  const StageSpec* stage = scene.stage(o.stage);
+  if (!stage) {
+    std::string list;
+    for (const StageSpec& s : scene.stages) list += (list.empty() ? "" : ", ") + s.name;
+    throw InputError(o.scene + ": no [[stage]] named \"" + o.stage + "\" (defined: " + (list.empty() ? "none" : list) + ")");
+  }
+  const std::string restart_file = restart_path(o.out);
+  Simulation sim;
+  CheckpointMeta meta;
+  if (o.restart && std::filesystem::exists(restart_file)) {
+    read_checkpoint(restart_file, sim, meta);
+    if (meta.scene_text != scene.text)
+      throw InputError(o.scene + ": the scene file differs from the one the periodic checkpoint " + restart_file +
+                       " was written with; an exact restart needs the same scene (delete the periodic checkpoint to start over)");
+    if (meta.run.stage != stage->name)
+      throw InputError(restart_file + ": the periodic checkpoint belongs to stage \"" + meta.run.stage + "\", not \"" + stage->name + "\"");
+    if (!o.quiet) std::cerr << "run-stage: resuming stage " << stage->name << " at step " << sim.step << " from " << restart_file << "\n";
+  } else {
+    if (o.restart && !o.quiet) std::cerr << "run-stage: no periodic checkpoint " << restart_file << ", starting from " << o.in << "\n";
+    read_checkpoint(o.in, sim, meta);
+    adopt_scene(sim, scene);
+    apply_actions(sim, *stage);
+    sim.dt = choose_time_step(sim, scene.simulation);
+    if (scene.simulation.time_step > sim.critical_time_step())
+      std::cerr << "warning: forced time step " << sim.dt << " s exceeds the critical step " << sim.critical_time_step() << " s (eq. 2.48)\n";
+    start_motions(sim, *stage);
+    meta.run = RunInfo{stage->name, sim.step, static_cast<std::int64_t>(std::ceil(stage->duration / sim.dt - 1e-9)), sim.time, {}};
+  }
+  meta.writer = "run-stage";
+  meta.scene_path = scene.path;
+  meta.scene_text = scene.text;
+  RunInfo& run = meta.run;
+
+  FrameWriter frames(o.vtk_dir, stage->name);
+  const std::int64_t interval =
+      stage->output_every > 0 ? std::max<std::int64_t>(1, std::llround(stage->output_every / sim.dt)) : run.stage_steps;
+  auto maybe_frame = [&]() {
+    const std::int64_t s = sim.step - run.stage_start_step;
+    if (s % interval == 0 || s == run.stage_steps) {
+      // A frame index is known from the step, so a resumed run rewrites exactly the same files.
+      const std::size_t index = static_cast<std::size_t>(s / interval) + (s % interval != 0);
+      run.frame_times.resize(index);
+      run.frame_times.push_back(sim.time);
+      frames.write(sim, run.frame_times);
+    }
+  };
+  if (sim.step == run.stage_start_step) maybe_frame();
+
+  Progress progress("run-stage " + stage->name, run.stage_steps, o.quiet);
+  const std::int64_t end = run.stage_start_step + run.stage_steps;
+  while (sim.step < end) {
+    sim.advance();
+    maybe_frame();
+    const std::int64_t done = sim.step - run.stage_start_step;
+    progress.update(done, sim.time);
+    if (o.checkpoint_every > 0 && done % o.checkpoint_every == 0 && sim.step < end) write_checkpoint(restart_file, sim, meta);
+  }
+  progress.finish(sim.step - run.stage_start_step, sim.time);
+  write_checkpoint(o.out, sim, meta);
+  std::remove(restart_file.c_str());
+}
+
+}  // namespace dem

@@ -1,0 +1,25 @@
+#pragma once
+// run-stage: one stage of a scene from a checkpoint to a checkpoint, with periodic checkpoints,
+// exact resumption (--restart) and VTK frames.
+#include <cstdint>
+#include <string>
+
+namespace dem {
+
+struct StageOptions {
+  std::string scene;  // scene file
+  std::string stage;  // stage name in the scene
+  std::string in;     // input checkpoint
+  std::string out;    // output checkpoint, written when the stage completes
+  std::string vtk_dir;               // VTK frames and .pvd series; empty = none
+  std::int64_t checkpoint_every = 0; // steps between periodic checkpoints; 0 = none
+  bool restart = false;              // resume from the periodic checkpoint if there is one
+  bool quiet = false;
+};
+
+// The periodic checkpoint that belongs to an output path: "x.h5" -> "x.restart.h5".
+std::string restart_path(const std::string& out);
+
+void run_stage(const StageOptions& options);
+
+}  // namespace dem

@@ -1,0 +1,109 @@
+#pragma once
+// A scene as plain, validated data: what io/scene_parser.cpp reads from a TOML file. Strings end
+// at the parser; inside the library everything is enums and numbers in SI units.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/types.hpp"
+#include "state/materials.hpp"
+#include "walls/wall.hpp"
+
+namespace dem {
+
+struct SimulationSpec {
+  double time_step = 0;          // [s]; 0 = automatic (eq. 2.48)
+  double frac = 0.1;             // FRAC of eq. 2.48
+  bool force_time_step = false;  // allow a time_step above the critical one
+  Vec3 gravity = Vec3(0, 0, -9.81);
+  double alpha_r = 0, alpha_theta = 0;  // global damping [1/s], eq. 2.36-2.37
+};
+
+struct WallSpec {
+  std::string name;
+  int material = 0;
+  std::vector<Vec3> vertices;
+};
+
+// Stop criterion for settling under gravity: mean kinetic energy per particle below
+// `ke_ratio` x (mean mass x |g| x mean diameter), checked every `check_every` seconds, or
+// `max_time` seconds of simulated time at most.
+struct SettleSpec {
+  double ke_ratio = 1e-4;
+  double max_time = 1.0;  // [s]
+  double check_every = 0.01;  // [s]
+};
+
+struct GenerationSpec {
+  Vec3 box_min, box_max;  // region to fill [m]
+  int count = 0;
+  double radius_min = 0, radius_max = 0;  // [m], uniform in [min, max]
+  std::vector<std::pair<int, double>> material_fractions;  // material index, fraction (sum 1)
+  std::uint64_t seed = 1;
+  SettleSpec settle;
+};
+
+struct CopySpec {
+  int nx = 1, ny = 1, nz = 1;
+  std::optional<Vec3> spacing;  // tile period [m]; default: the primary set's bounding box
+  SettleSpec settle;
+};
+
+struct CompactSpec {
+  std::vector<std::string> walls;  // walls (or wall groups) moved inward
+  double speed = 0;                // [m/s]
+  double target_stress = 0;        // [Pa] mean normal stress on the moving walls; 0 when not given
+  double target_porosity = 0;      // 0 when not given (exactly one of the two is given)
+  double max_time = 1.0;           // [s]
+  SettleSpec settle;               // relaxation after the target is reached
+};
+
+struct Region {
+  enum class Kind { Box, Sphere };
+  Kind kind = Kind::Box;
+  Vec3 min = Vec3::Zero(), max = Vec3::Zero();  // box
+  Vec3 centre = Vec3::Zero();                   // sphere
+  double radius = 0;
+  bool contains(const Vec3& x) const;
+};
+
+struct ActionSpec {
+  enum class Kind { Remove, ResetReference };
+  Kind kind = Kind::Remove;
+  Region region;        // Remove
+  bool inside = true;   // Remove: particles inside (true) or outside (false) the region
+};
+
+struct MotionSpec {
+  std::string wall;  // a wall name, or a group prefix ("box" matches "box.zmin", ...)
+  WallMotion motion;
+};
+
+struct StageSpec {
+  std::string name;
+  double duration = 0;      // [s]
+  double output_every = 0;  // VTK frame cadence [s]; 0 = first and last frame only
+  std::vector<ActionSpec> actions;  // applied in order at the start of the stage
+  std::vector<MotionSpec> motions;  // wall motions during the stage (others stay fixed)
+};
+
+struct Scene {
+  std::string path;  // file it came from
+  std::string text;  // its full text, stored in every checkpoint
+  SimulationSpec simulation;
+  std::vector<Material> materials;
+  MixingRules mixing;
+  std::vector<WallSpec> walls;
+  std::optional<GenerationSpec> generation;
+  std::optional<CopySpec> copy;
+  std::optional<CompactSpec> compact;
+  std::vector<StageSpec> stages;
+
+  const StageSpec* stage(const std::string& name) const;
+};
+
+// Does a wall name match a name or a group prefix given in the scene?
+bool wall_matches(const std::string& wall_name, const std::string& pattern);
+
+}  // namespace dem

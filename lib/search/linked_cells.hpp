@@ -1,0 +1,22 @@
+#pragma once
+// Contact detection with linked cells (SPEC §4, thesis §3.5, eq. 3.1-3.4): HEAD/LIST over a grid of
+// cells with edge >= 2 Rmax, each pair visited once through half of the 26 neighbour cells. O(N).
+// The grid spans the particles' bounding box each call, so no domain needs declaring.
+#include <vector>
+
+#include "contact/contact_list.hpp"
+#include "state/particles.hpp"
+
+namespace dem {
+
+class LinkedCells {
+ public:
+  // Appends every overlapping pair (|x_i - x_j| < a_i + a_j) to `out`, keyed by ids
+  // (key_i < key_j), in a deterministic order (not sorted).
+  void find_overlaps(const Particles& p, std::vector<FoundContact>& out);
+
+ private:
+  std::vector<int> head_, next_;
+};
+
+}  // namespace dem

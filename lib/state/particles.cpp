@@ -1,0 +1,30 @@
+#include "state/particles.hpp"
+
+#include <algorithm>
+
+namespace dem {
+
+namespace {
+template <class T>
+void compact(std::vector<T>& a, const std::vector<bool>& keep) {
+  std::size_t out = 0;
+  for (std::size_t k = 0; k < a.size(); ++k)
+    if (keep[k]) a[out++] = a[k];
+  a.resize(out);
+}
+}  // namespace
+
+void Particles::keep_only(const std::vector<bool>& keep) {
+  compact(id, keep);
+  compact(x, keep);
+  compact(v, keep);
+  compact(w, keep);
+  compact(x_ref, keep);
+  compact(radius, keep);
+  compact(mass, keep);
+  compact(material, keep);
+}
+
+Index Particles::max_id() const { return id.empty() ? -1 : *std::max_element(id.begin(), id.end()); }
+
+}  // namespace dem

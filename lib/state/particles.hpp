@@ -1,0 +1,46 @@
+#pragma once
+// Particles as structure-of-arrays: one contiguous array per property, a stable id apart from the
+// storage slot (SPEC §2: rigid spheres with 6 degrees of freedom).
+#include <cstddef>
+#include <numbers>
+#include <vector>
+
+#include "core/types.hpp"
+
+namespace dem {
+
+inline double sphere_volume(double a) { return 4.0 / 3.0 * std::numbers::pi * a * a * a; }
+inline double sphere_mass(double density, double a) { return density * sphere_volume(a); }  // m = rho 4/3 pi a^3
+
+struct Particles {
+  std::vector<Index> id;
+  std::vector<Vec3> x;      // position at step n [m]
+  std::vector<Vec3> v;      // velocity at step n-1/2 [m/s] (central differences, eq. 2.38)
+  std::vector<Vec3> w;      // angular velocity at step n-1/2 [rad/s]
+  std::vector<Vec3> x_ref;  // reference position for displacement fields [m]
+  std::vector<double> radius;  // [m]
+  std::vector<double> mass;    // [kg], m = rho 4/3 pi a^3
+  std::vector<int> material;   // index into the material table
+
+  std::size_t size() const { return id.size(); }
+
+  void add(Index pid, const Vec3& pos, double a, double density, int mat) {
+    id.push_back(pid);
+    x.push_back(pos);
+    v.push_back(Vec3::Zero());
+    w.push_back(Vec3::Zero());
+    x_ref.push_back(pos);
+    radius.push_back(a);
+    mass.push_back(sphere_mass(density, a));
+    material.push_back(mat);
+  }
+
+  double inertia(std::size_t k) const { return 0.4 * mass[k] * radius[k] * radius[k]; }  // I = 2/5 m a^2
+
+  // Keep the particles for which keep[k] is true, preserving storage order.
+  void keep_only(const std::vector<bool>& keep);
+
+  Index max_id() const;
+};
+
+}  // namespace dem

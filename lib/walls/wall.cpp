@@ -1,0 +1,91 @@
+#include "walls/wall.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace dem {
+
+Vec3 WallMotion::offset(double t) const {
+  const double s = t - t0;
+  switch (kind) {
+    case Kind::Fixed: return Vec3::Zero();
+    case Kind::Translate: return velocity * s;
+    case Kind::Vibrate: return direction * (amplitude * std::sin(2 * std::numbers::pi * frequency * s));
+  }
+  return Vec3::Zero();
+}
+
+Vec3 WallMotion::velocity_at(double t) const {
+  const double s = t - t0;
+  switch (kind) {
+    case Kind::Fixed: return Vec3::Zero();
+    case Kind::Translate: return velocity;
+    case Kind::Vibrate: {
+      const double om = 2 * std::numbers::pi * frequency;
+      return direction * (amplitude * om * std::cos(om * s));
+    }
+  }
+  return Vec3::Zero();
+}
+
+std::vector<Vec3> Wall::vertices_at(double t) const {
+  const Vec3 d = motion.offset(t);
+  std::vector<Vec3> out(base);
+  for (Vec3& v : out) v += d;
+  return out;
+}
+
+void Wall::start_motion(const WallMotion& m, double t) {
+  base = vertices_at(t);
+  motion = m;
+  motion.t0 = t;
+}
+
+namespace {
+Vec3 closest_on_segment(const Vec3& a, const Vec3& b, const Vec3& p) {
+  const Vec3 ab = b - a;
+  const double len2 = ab.squaredNorm();
+  double s = len2 > 0 ? (p - a).dot(ab) / len2 : 0.0;
+  s = std::clamp(s, 0.0, 1.0);
+  return a + s * ab;
+}
+}  // namespace
+
+Vec3 closest_point_on_polygon(const Vec3* v, int n, const Vec3& nrm, const Vec3& p) {
+  const Vec3 q = p - (p - v[0]).dot(nrm) * nrm;  // projection on the plane
+  bool inside = true;
+  for (int k = 0; k < n && inside; ++k) {
+    const Vec3& a = v[k];
+    const Vec3& b = v[(k + 1) % n];
+    inside = (b - a).cross(q - a).dot(nrm) >= 0;  // vertices are counter-clockwise about nrm
+  }
+  if (inside) return q;
+  Vec3 best = closest_on_segment(v[0], v[1], p);
+  double best_d2 = (best - p).squaredNorm();
+  for (int k = 1; k < n; ++k) {
+    const Vec3 c = closest_on_segment(v[k], v[(k + 1) % n], p);
+    const double d2 = (c - p).squaredNorm();
+    if (d2 < best_d2) best = c, best_d2 = d2;
+  }
+  return best;
+}
+
+std::string polygon_problem(const std::vector<Vec3>& v) {
+  if (v.size() != 3 && v.size() != 4) return "a wall polygon needs 3 or 4 vertices";
+  const Vec3 n = (v[1] - v[0]).cross(v[2] - v[0]);
+  const double scale = std::max((v[1] - v[0]).norm(), (v[2] - v[0]).norm());
+  if (!(n.norm() > 1e-12 * scale * scale) || !(scale > 0)) return "the vertices are collinear or coincident";
+  const Vec3 u = n.normalized();
+  const int m = static_cast<int>(v.size());
+  for (int k = 0; k < m; ++k) {
+    if (std::abs((v[k] - v[0]).dot(u)) > 1e-9 * scale) return "the vertices are not in one plane";
+    const Vec3& a = v[k];
+    const Vec3& b = v[(k + 1) % m];
+    const Vec3& c = v[(k + 2) % m];
+    if ((b - a).cross(c - b).dot(u) <= 0) return "the polygon is not convex (or its vertices are not in order)";
+  }
+  return "";
+}
+
+}  // namespace dem

@@ -1,0 +1,78 @@
+#!/usr/bin/env python3
+"""Open a checkpoint written by the tools with h5py and check it against docs/checkpoint.md:
+root attributes, every documented dataset with its dtype kind, shape and units attribute."""
+import sys
+
+import h5py
+import numpy as np
+
+
+def main(path, expect_writer):
+    with h5py.File(path, "r") as f:
+        assert f.attrs["format"] == b"dem-checkpoint", f.attrs["format"]
+        assert int(f.attrs["schema_version"]) == 1
+        assert f.attrs["writer"].decode() == expect_writer, f.attrs["writer"]
+        assert len(f.attrs["writer_version"]) > 0
+
+        n = f["particles/id"].shape[0]
+        m = f["materials/name"].shape[0]
+        w = f["walls/name"].shape[0]
+        assert n > 0 and m > 0
+        # path: (dtype kind, shape, units or None)
+        spec = {
+            "scene/text": ("S", (1,), None), "scene/path": ("S", (1,), None),
+            "state/time": ("f", (1,), "s"), "state/step": ("i", (1,), None), "state/dt": ("f", (1,), "s"),
+            "state/gravity": ("f", (1, 3), "m/s^2"), "state/alpha_r": ("f", (1,), "1/s"),
+            "state/alpha_theta": ("f", (1,), "1/s"),
+            "run/stage": ("S", (1,), None), "run/stage_start_step": ("i", (1,), None),
+            "run/stage_steps": ("i", (1,), None), "run/stage_start_time": ("f", (1,), "s"),
+            "particles/id": ("i", (n,), None), "particles/position": ("f", (n, 3), "m"),
+            "particles/velocity": ("f", (n, 3), "m/s"), "particles/angular_velocity": ("f", (n, 3), "rad/s"),
+            "particles/reference_position": ("f", (n, 3), "m"), "particles/radius": ("f", (n,), "m"),
+            "particles/mass": ("f", (n,), "kg"), "particles/material": ("i", (n,), None),
+            "materials/name": ("S", (m,), None), "materials/density": ("f", (m,), "kg/m^3"),
+            "materials/kn": ("f", (m,), "N/m"), "materials/kt": ("f", (m,), "N/m"),
+            "materials/friction_angle": ("f", (m,), "degree"), "materials/restitution": ("f", (m,), "1"),
+            "materials/tangential_restitution": ("f", (m,), "1"), "materials/mixing": ("i", (3,), None),
+            "walls/name": ("S", (w,), None), "walls/material": ("i", (w,), None),
+            "walls/vertex_count": ("i", (w,), None), "walls/base_vertices": ("f", (w, 4, 3), "m"),
+            "walls/vertices": ("f", (w, 4, 3), "m"), "walls/motion_kind": ("i", (w,), None),
+            "walls/motion_velocity": ("f", (w, 3), "m/s"), "walls/motion_direction": ("f", (w, 3), "1"),
+            "walls/motion_frequency": ("f", (w,), "Hz"), "walls/motion_amplitude": ("f", (w,), "m"),
+            "walls/motion_t0": ("f", (w,), "s"),
+        }
+        for name, (kind, shape, units) in spec.items():
+            d = f[name]
+            assert d.dtype.kind == kind, f"{name}: dtype {d.dtype}, expected kind {kind}"
+            assert d.shape == shape, f"{name}: shape {d.shape}, expected {shape}"
+            got = d.attrs.get("units")
+            if units is None:
+                assert got is None, f"{name}: unexpected units {got}"
+            else:
+                assert got is not None and got.decode() == units, f"{name}: units {got}, expected {units}"
+            if d.size > 0:
+                assert d.fletcher32, f"{name}: no Fletcher32 checksum"
+        for name in ("contacts/pair_ids", "contacts/wall_ids"):
+            assert f[name].dtype.kind == "i" and f[name].ndim == 2 and f[name].shape[1] == 2, name
+        assert f["contacts/pair_spring"].shape == (f["contacts/pair_ids"].shape[0], 3)
+        assert f["contacts/wall_spring"].shape == (f["contacts/wall_ids"].shape[0], 3)
+        assert f["contacts/pair_spring"].attrs["units"] == b"N"
+
+        # Contents consistent with the scene the file carries.
+        scene = f["scene/text"][0].decode()
+        assert "[[material]]" in scene
+        ids = f["particles/id"][:]
+        assert len(np.unique(ids)) == n, "ids are unique"
+        r = f["particles/radius"][:]
+        rho = f["materials/density"][:][f["particles/material"][:]]
+        assert np.allclose(f["particles/mass"][:], rho * 4 / 3 * np.pi * r**3, rtol=1e-12), "m = rho 4/3 pi a^3"
+        pairs = f["contacts/pair_ids"][:]
+        if len(pairs):
+            assert np.all(pairs[:, 0] < pairs[:, 1]), "pair keys ordered id_i < id_j"
+            assert np.all(np.isin(pairs, ids)), "pair keys are particle ids"
+        assert f["state/dt"][0] > 0 and f["state/step"][0] > 0
+    print(f"{path}: schema v1 ok ({n} particles, {m} materials, {w} walls)")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1], sys.argv[2])

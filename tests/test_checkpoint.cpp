@@ -1,0 +1,192 @@
+// Checkpoint round trip, and damaged or foreign files detected with a clear IoError instead of
+// being read as wrong numbers.
+#include <gtest/gtest.h>
+#include <hdf5.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include "core/error.hpp"
+#include "generation/fill.hpp"
+#include "io/checkpoint.hpp"
+
+namespace dem {
+namespace {
+
+namespace fs = std::filesystem;
+
+class CheckpointTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("dem_ckpt_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    Material m;
+    m.name = "glass";
+    sim_.materials = MaterialTable({m, Material{"steel", 7800, 2e5, 1e5, 20, 0.4, 0.6, NormalLaw::Cundall}}, {});
+    sim_.walls.push_back(Wall{"floor", 1, {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0)}, {}});
+    WallMotion vib;
+    vib.kind = WallMotion::Kind::Vibrate;
+    vib.frequency = 20;
+    vib.amplitude = 1e-3;
+    sim_.walls[0].start_motion(vib, 0.0);
+    GenerationSpec g;
+    g.box_min = Vec3(0, 0, 0);
+    g.box_max = Vec3(0.02, 0.02, 0.02);
+    g.count = 150;
+    g.radius_min = 0.001;
+    g.radius_max = 0.0015;
+    g.material_fractions = {{0, 1.0}};
+    std::mt19937_64 rng(11);
+    fill_random(sim_, g, rng);
+    // Random velocities towards the floor so that both kinds of contact exist when it is written.
+    std::uniform_real_distribution<double> u(-0.5, 0.5);
+    for (Vec3& v : sim_.particles.v) v = Vec3(u(rng), u(rng), u(rng) - 0.5);
+    sim_.dt = 0.1 * sim_.critical_time_step();
+    for (int s = 0; s < 50000 && (s < 3000 || sim_.pair_contacts.size() == 0 || sim_.wall_contacts.size() == 0); ++s) sim_.advance();
+    meta_.writer = "test";
+    meta_.scene_text = "# scene text\n";
+    meta_.scene_path = "x.toml";
+    meta_.run = {"shake", 10, 20, 0.5, {0.1, 0.2}};
+    path_ = (dir_ / "a.h5").string();
+    write_checkpoint(path_, sim_, meta_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  void expect_rejected(const std::string& path, const std::string& fragment) {
+    Simulation s;
+    CheckpointMeta m;
+    try {
+      read_checkpoint(path, s, m);
+      FAIL() << "read_checkpoint accepted a bad file: " << fragment;
+    } catch (const IoError& e) {
+      EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << "the message names the file: " << e.what();
+    }
+  }
+
+  fs::path dir_;
+  Simulation sim_;
+  CheckpointMeta meta_;
+  std::string path_;
+};
+
+TEST_F(CheckpointTest, RoundTripIsExact) {
+  ASSERT_GT(sim_.pair_contacts.size(), 0u);
+  ASSERT_GT(sim_.wall_contacts.size(), 0u);
+  Simulation s;
+  CheckpointMeta m;
+  read_checkpoint(path_, s, m);
+  EXPECT_EQ(s.particles.id, sim_.particles.id);
+  EXPECT_EQ(s.particles.x, sim_.particles.x);
+  EXPECT_EQ(s.particles.v, sim_.particles.v);
+  EXPECT_EQ(s.particles.w, sim_.particles.w);
+  EXPECT_EQ(s.particles.radius, sim_.particles.radius);
+  EXPECT_EQ(s.particles.mass, sim_.particles.mass);
+  EXPECT_EQ(s.pair_contacts.key_i, sim_.pair_contacts.key_i);
+  EXPECT_EQ(s.pair_contacts.spring, sim_.pair_contacts.spring);
+  EXPECT_EQ(s.wall_contacts.key_j, sim_.wall_contacts.key_j);
+  EXPECT_EQ(s.time, sim_.time);
+  EXPECT_EQ(s.step, sim_.step);
+  EXPECT_EQ(s.dt, sim_.dt);
+  EXPECT_EQ(s.walls[0].vertices_at(s.time), sim_.walls[0].vertices_at(sim_.time));
+  EXPECT_EQ(s.materials.materials()[1].kt, 1e5);
+  EXPECT_EQ(m.run.stage, "shake");
+  EXPECT_EQ(m.run.frame_times, meta_.run.frame_times);
+  EXPECT_EQ(m.scene_text, meta_.scene_text);
+
+  // Continuing from the checkpoint gives the same bits as continuing in memory.
+  for (int k = 0; k < 500; ++k) s.advance(), sim_.advance();
+  EXPECT_EQ(s.particles.x, sim_.particles.x);
+  EXPECT_EQ(s.particles.w, sim_.particles.w);
+}
+
+TEST_F(CheckpointTest, MissingFile) { expect_rejected((dir_ / "none.h5").string(), "no such checkpoint"); }
+
+TEST_F(CheckpointTest, NotHdf5) {
+  const std::string p = (dir_ / "text.h5").string();
+  std::ofstream(p) << "particles 1 2 3\n";
+  expect_rejected(p, "not an HDF5 file");
+}
+
+TEST_F(CheckpointTest, Truncated) {
+  const std::string p = (dir_ / "cut.h5").string();
+  fs::copy_file(path_, p);
+  fs::resize_file(p, fs::file_size(p) / 2);
+  Simulation s;
+  CheckpointMeta m;
+  EXPECT_THROW(read_checkpoint(p, s, m), IoError);
+}
+
+TEST_F(CheckpointTest, ForeignHdf5) {
+  const std::string p = (dir_ / "foreign.h5").string();
+  hid_t f = H5Fcreate(p.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+  hsize_t n = 4;
+  hid_t sp = H5Screate_simple(1, &n, nullptr);
+  hid_t d = H5Dcreate2(f, "/positions", H5T_NATIVE_DOUBLE, sp, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+  H5Dclose(d);
+  H5Sclose(sp);
+  H5Fclose(f);
+  expect_rejected(p, "not a dem checkpoint");
+}
+
+TEST_F(CheckpointTest, WrongSchemaVersion) {
+  hid_t f = H5Fopen(path_.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  hid_t a = H5Aopen(f, "schema_version", H5P_DEFAULT);
+  const int v = 99;
+  H5Awrite(a, H5T_NATIVE_INT, &v);
+  H5Aclose(a);
+  H5Fclose(f);
+  expect_rejected(path_, "schema version 99");
+}
+
+TEST_F(CheckpointTest, MissingDataset) {
+  hid_t f = H5Fopen(path_.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  H5Ldelete(f, "/particles/velocity", H5P_DEFAULT);
+  H5Fclose(f);
+  expect_rejected(path_, "'/particles/velocity' is missing");
+}
+
+// A flipped byte inside the position data is caught by the Fletcher32 checksum.
+TEST_F(CheckpointTest, FlippedByteInData) {
+  haddr_t addr = 0;
+  hsize_t size = 0;
+  {
+    hid_t f = H5Fopen(path_.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    hid_t d = H5Dopen2(f, "/particles/position", H5P_DEFAULT);
+    hid_t space = H5Dget_space(d);
+    hsize_t offset[2];
+    unsigned mask = 0;
+    ASSERT_GE(H5Dget_chunk_info(d, space, 0, offset, &mask, &addr, &size), 0);
+    H5Sclose(space);
+    H5Dclose(d);
+    H5Fclose(f);
+  }
+  std::fstream io(path_, std::ios::in | std::ios::out | std::ios::binary);
+  io.seekg(static_cast<std::streamoff>(addr + size / 2));
+  char c = 0;
+  io.read(&c, 1);
+  c ^= 0x10;
+  io.seekp(static_cast<std::streamoff>(addr + size / 2));
+  io.write(&c, 1);
+  io.close();
+  expect_rejected(path_, "checksum");
+}
+
+// A failed write leaves the previous checkpoint intact and no temporary behind.
+TEST_F(CheckpointTest, FailedWriteKeepsPreviousFile) {
+  const auto before = fs::file_size(path_);
+  fs::create_directories(path_ + ".tmp");  // the temporary name cannot be created
+  EXPECT_THROW(write_checkpoint(path_, sim_, meta_), IoError);
+  fs::remove_all(path_ + ".tmp");
+  EXPECT_EQ(fs::file_size(path_), before);
+  Simulation s;
+  CheckpointMeta m;
+  EXPECT_NO_THROW(read_checkpoint(path_, s, m));
+}
+
+}  // namespace
+}  // namespace dem

@@ -1,0 +1,157 @@
+// Strict scene validation: each malformed input is rejected with a message that names the file,
+// the line, the key, the value and what is allowed.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "core/error.hpp"
+#include "io/scene_parser.hpp"
+
+namespace dem {
+namespace {
+
+const std::string kValid = R"([simulation]
+gravity = [0.0, 0.0, -9.81]
+
+[[material]]
+name = "glass"
+density = 2500.0
+kn = 5.0e4
+friction_angle = 25.0
+restitution = 0.3
+
+[[wall]]
+name = "box"
+material = "glass"
+type = "box"
+min = [0.0, 0.0, 0.0]
+max = [0.02, 0.02, 0.05]
+
+[generation]
+box_min = [0.0, 0.0, 0.0]
+box_max = [0.02, 0.02, 0.05]
+count = 100
+radius_min = 0.001
+radius_max = 0.002
+materials = { glass = 1.0 }
+
+[[stage]]
+name = "shake"
+duration = 0.1
+
+[[stage.motion]]
+wall = "box"
+type = "vibrate"
+direction = [0.0, 0.0, 1.0]
+frequency = 20.0
+acceleration = 29.43
+)";
+
+std::string replace(std::string s, const std::string& from, const std::string& to) {
+  const auto pos = s.find(from);
+  if (pos == std::string::npos) throw std::logic_error("test text not found: " + from);
+  return s.replace(pos, from.size(), to);
+}
+
+TEST(SceneParser, ValidSceneParses) {
+  const Scene s = parse_scene(kValid, "scene.toml");
+  ASSERT_EQ(s.materials.size(), 1u);
+  EXPECT_EQ(s.materials[0].kt, 5e4) << "kt defaults to kn";
+  EXPECT_EQ(s.materials[0].restitution_t, 0.3) << "tangential restitution defaults to restitution";
+  EXPECT_EQ(s.walls.size(), 6u) << "a box is six quads";
+  EXPECT_EQ(s.walls[4].name, "box.zmin");
+  ASSERT_TRUE(s.generation);
+  EXPECT_EQ(s.generation->count, 100);
+  ASSERT_EQ(s.stages.size(), 1u);
+  const double w = 2 * M_PI * 20;
+  EXPECT_DOUBLE_EQ(s.stages[0].motions[0].motion.amplitude, 29.43 / (w * w)) << "acceleration -> amplitude A = a / (2 pi f)^2";
+}
+
+struct BadCase {
+  const char* what;
+  std::string text;
+  std::vector<std::string> expect;  // fragments the message must contain
+};
+
+class SceneRejects : public ::testing::TestWithParam<BadCase> {};
+
+TEST_P(SceneRejects, WithAClearMessage) {
+  const BadCase& c = GetParam();
+  try {
+    parse_scene(c.text, "scene.toml");
+    FAIL() << c.what << ": accepted";
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_EQ(msg.rfind("scene.toml:", 0), 0u) << "names the file: " << msg;
+    for (const std::string& f : c.expect) EXPECT_NE(msg.find(f), std::string::npos) << c.what << ": missing '" << f << "' in: " << msg;
+  }
+}
+
+std::vector<BadCase> bad_cases() {
+  return {
+      {"syntax error", replace(kValid, "density = 2500.0", "density = = 2500.0"), {"scene.toml:6", "TOML syntax error"}},
+      {"unknown top-level key", kValid + "\n[solver]\norder = 2\n", {"solver", "unknown key"}},
+      {"unknown material key", replace(kValid, "density = 2500.0", "density = 2500.0\ndensty = 1.0"),
+       {"scene.toml:7", "material[0].densty", "unknown key", "allowed here"}},
+      {"negative density", replace(kValid, "density = 2500.0", "density = -5.0"),
+       {"scene.toml:6", "material[0].density = -5", "out of range", "kg/m^3"}},
+      {"density as string", replace(kValid, "density = 2500.0", "density = \"heavy\""),
+       {"material[0].density = \"heavy\"", "expected a number", "got a string"}},
+      {"zero stiffness", replace(kValid, "kn = 5.0e4", "kn = 0.0"), {"material[0].kn = 0", "(0, inf) N/m"}},
+      {"restitution above one", replace(kValid, "restitution = 0.3", "restitution = 1.5"),
+       {"material[0].restitution = 1.5", "(0, 1]"}},
+      {"friction angle 90", replace(kValid, "friction_angle = 25.0", "friction_angle = 90.0"),
+       {"material[0].friction_angle = 90", "[0, 90) degrees"}},
+      {"unknown contact law", replace(kValid, "density = 2500.0", "density = 2500.0\nlaw = \"hertz\""),
+       {"material[0].law = \"hertz\"", "allowed \"cundall\""}},
+      {"no material", replace(kValid, "[[material]]\nname = \"glass\"", "[[materia]]\nname = \"glass\""),
+       {"no [[material]] defined"}},
+      {"duplicate material", replace(kValid, "[[wall]]", "[[material]]\nname = \"glass\"\ndensity = 1.0\nkn = 1.0\n\n[[wall]]"),
+       {"material[1].name = \"glass\"", "duplicate"}},
+      {"wall with unknown material", replace(kValid, "material = \"glass\"\ntype", "material = \"rubber\"\ntype"),
+       {"wall[0].material = \"rubber\"", "no material of that name", "\"glass\""}},
+      {"unknown wall type", replace(kValid, "type = \"box\"", "type = \"sphere\""), {"wall[0].type = \"sphere\"", "\"polygon\", \"box\""}},
+      {"degenerate polygon", replace(kValid, "type = \"box\"\nmin = [0.0, 0.0, 0.0]\nmax = [0.02, 0.02, 0.05]",
+                                     "type = \"polygon\"\nvertices = [[0.0,0.0,0.0],[1.0,0.0,0.0],[2.0,0.0,0.0]]"),
+       {"wall[0].vertices", "collinear"}},
+      {"non-planar quad", replace(kValid, "type = \"box\"\nmin = [0.0, 0.0, 0.0]\nmax = [0.02, 0.02, 0.05]",
+                                  "type = \"polygon\"\nvertices = [[0,0,0],[1,0,0],[1,1,0.5],[0,1,0]]"),
+       {"wall[0].vertices", "not in one plane"}},
+      {"box max below min", replace(kValid, "max = [0.02, 0.02, 0.05]\n\n[generation]", "max = [0.02, -0.02, 0.05]\n\n[generation]"),
+       {"wall[0].max", "must exceed min"}},
+      {"Rmin > Rmax", replace(kValid, "radius_min = 0.001", "radius_min = 0.003"),
+       {"generation.radius_max = 0.002", "radius_max must be >= radius_min"}},
+      {"sphere larger than box", replace(kValid, "radius_max = 0.002", "radius_max = 0.02"),
+       {"generation.radius_max = 0.02", "does not fit"}},
+      {"count zero", replace(kValid, "count = 100", "count = 0"), {"generation.count = 0", "[1, 100000000]"}},
+      {"count not an integer", replace(kValid, "count = 100", "count = 100.5"), {"generation.count = 100.5", "expected an integer"}},
+      {"fractions do not sum to 1", replace(kValid, "materials = { glass = 1.0 }", "materials = { glass = 0.5 }"),
+       {"generation.materials", "sum to 1"}},
+      {"fraction for an unknown material", replace(kValid, "materials = { glass = 1.0 }", "materials = { glas = 1.0 }"),
+       {"generation.materials.glas", "no material of that name"}},
+      {"missing required key", replace(kValid, "count = 100\n", ""), {"generation.count is missing"}},
+      {"gravity not a vector", replace(kValid, "gravity = [0.0, 0.0, -9.81]", "gravity = -9.81"),
+       {"simulation.gravity = -9.81", "array of 3 numbers"}},
+      {"negative time step", replace(kValid, "gravity = [0.0, 0.0, -9.81]", "gravity = [0.0, 0.0, -9.81]\ntime_step = -1e-6"),
+       {"simulation.time_step", "out of range"}},
+      {"frac above one", replace(kValid, "gravity = [0.0, 0.0, -9.81]", "gravity = [0.0, 0.0, -9.81]\nfrac = 2.0"),
+       {"simulation.frac = 2", "(0, 1]"}},
+      {"negative duration", replace(kValid, "duration = 0.1", "duration = -0.1"), {"stage[0].duration = -0.1", "out of range", " s"}},
+      {"motion of an unknown wall", replace(kValid, "wall = \"box\"", "wall = \"lid\""),
+       {"stage[0].motion[0].wall = \"lid\"", "no wall or wall group"}},
+      {"both amplitude and acceleration", replace(kValid, "acceleration = 29.43", "acceleration = 29.43\namplitude = 0.001"),
+       {"stage[0].motion[0]", "exactly one of amplitude"}},
+      {"zero vibration direction", replace(kValid, "direction = [0.0, 0.0, 1.0]", "direction = [0.0, 0.0, 0.0]"),
+       {"stage[0].motion[0].direction", "non-zero"}},
+      {"duplicate stage", kValid + "\n[[stage]]\nname = \"shake\"\nduration = 1.0\n", {"stage[1].name = \"shake\"", "duplicate stage"}},
+      {"unknown action", kValid + "\n[[stage.action]]\ntype = \"explode\"\n", {"stage[0].action[0].type = \"explode\"", "\"remove\""}},
+      {"boolean expected", replace(kValid, "gravity = [0.0, 0.0, -9.81]", "gravity = [0.0, 0.0, -9.81]\nforce_time_step = 1"),
+       {"simulation.force_time_step = 1", "expected true or false"}},
+  };
+}
+
+INSTANTIATE_TEST_SUITE_P(BadInputs, SceneRejects, ::testing::ValuesIn(bad_cases()));
+
+}  // namespace
+}  // namespace dem

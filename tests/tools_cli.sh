@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# Command-line behaviour shared by the five tools: --help, --version, exit codes (README), clear
+# errors for bad input, and no output file left behind when a run fails.
+set -u
+bin=$1 data=$2
+tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+fail=0
+check() {  # check NAME EXPECTED_CODE PATTERN -- command...
+  local name=$1 want=$2 pattern=$3; shift 4
+  "$@" > "$tmp/out" 2>&1; local got=$?
+  if [ "$got" != "$want" ] || ! grep -q -- "$pattern" "$tmp/out"; then
+    echo "FAIL $name: exit $got (want $want), pattern '$pattern' in:"; sed 's/^/    /' "$tmp/out"; fail=1
+  else echo "ok   $name"; fi
+}
+for t in gen-primary copy-settle compact run-stage post-macro; do
+  check "$t --help" 0 "--scene\|--reference" -- "$bin/$t" --help
+  check "$t --version" 0 "0\.1\.0" -- "$bin/$t" --version
+  check "$t missing required option" 2 "is required" -- "$bin/$t"
+done
+for t in gen-primary copy-settle compact; do
+  args=(--scene "$data/small.toml" --out "$tmp/x.h5"); [ $t = gen-primary ] || args+=(--in "$data/small.toml")
+  check "$t unknown option" 2 "not expected: --bogus" -- "$bin/$t" "${args[@]}" --bogus
+done
+check "run-stage unknown option" 2 "not expected: --bogus" -- "$bin/run-stage" --scene "$data/small.toml" --stage s --in a --out b --bogus
+check "post-macro bad axis" 2 "--axis" -- "$bin/post-macro" --reference "$data/small.toml" --in "$data/small.toml" --axis w
+
+# Scene errors: exit 3, file:line in the message, no output written.
+printf '[[material]]\nname = "g"\ndensity = -1.0\nkn = 1.0\n' > "$tmp/bad.toml"
+check "bad scene" 3 "bad.toml:3:11: material\[0\].density = -1: out of range" -- "$bin/gen-primary" --scene "$tmp/bad.toml" --out "$tmp/o.h5"
+[ -e "$tmp/o.h5" ] && { echo "FAIL output written after a bad scene"; fail=1; }
+printf '[[material]]\nname = "g"\ndensity = 1.0\nkn = 1.0\n' > "$tmp/nogen.toml"
+check "no [generation]" 3 "needs a \[generation\] table" -- "$bin/gen-primary" --scene "$tmp/nogen.toml" --out "$tmp/o.h5"
+check "missing scene file" 2 "File does not exist" -- "$bin/gen-primary" --scene "$tmp/none.toml" --out "$tmp/o.h5"
+
+# Checkpoint errors: exit 4 with the reason.
+"$bin/gen-primary" --scene "$data/small.toml" --out "$tmp/a.h5" --quiet > /dev/null || { echo "FAIL gen-primary"; exit 1; }
+check "missing checkpoint" 4 "no such checkpoint" -- "$bin/run-stage" --scene "$data/small.toml" --stage shake --in "$tmp/none.h5" --out "$tmp/b.h5"
+echo "not hdf5" > "$tmp/text.h5"
+check "text file as checkpoint" 4 "not an HDF5 file" -- "$bin/run-stage" --scene "$data/small.toml" --stage shake --in "$tmp/text.h5" --out "$tmp/b.h5"
+head -c 20000 "$tmp/a.h5" > "$tmp/cut.h5"
+check "truncated checkpoint" 4 "cut.h5" -- "$bin/post-macro" --reference "$tmp/a.h5" --in "$tmp/cut.h5" --vtk "$tmp/d.vtu"
+[ -e "$tmp/d.vtu" ] && { echo "FAIL output written after a bad checkpoint"; fail=1; }
+check "unknown stage" 3 'no \[\[stage\]\] named "drill" (defined: shake, long)' -- "$bin/run-stage" --scene "$data/small.toml" --stage drill --in "$tmp/a.h5" --out "$tmp/b.h5"
+sed 's/^frac = 0.1/frac = 0.1\ntime_step = 1.0e-3/' "$data/small.toml" > "$tmp/fast.toml"
+check "time step above critical" 3 "exceeds the critical time step" -- "$bin/run-stage" --scene "$tmp/fast.toml" --stage shake --in "$tmp/a.h5" --out "$tmp/b.h5"
+sed 's/^name = "glass"/name = "sand"/; s/glass = 1.0/sand = 1.0/' "$data/small.toml" > "$tmp/other.toml"
+check "material missing from scene" 3 'material "glass", which this scene does not define' -- "$bin/run-stage" --scene "$tmp/other.toml" --stage shake --in "$tmp/a.h5" --out "$tmp/b.h5"
+[ -e "$tmp/b.h5" ] && { echo "FAIL output written after failed runs"; fail=1; }
+check "threads option" 0 "removed" -- "$bin/run-stage" --scene "$data/small.toml" --stage shake --in "$tmp/a.h5" --out "$tmp/b.h5" --threads 1 --quiet
+exit $fail

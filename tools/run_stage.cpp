@@ -1,0 +1,21 @@
+// run-stage: run one stage of a scene from a checkpoint to a checkpoint.
+#include "run/stage_runner.hpp"
+#include "tool_main.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app("Run one [[stage]] of a scene from a checkpoint to a checkpoint, with periodic checkpoints, exact restart and VTK frames.",
+               "run-stage");
+  dem::StageOptions o;
+  int threads = 0;
+  app.add_option("--scene", o.scene, "scene file (TOML)")->required()->check(CLI::ExistingFile);
+  app.add_option("--stage", o.stage, "name of the [[stage]] to run")->required();
+  app.add_option("--in", o.in, "input checkpoint (HDF5)")->required();
+  app.add_option("--out", o.out, "output checkpoint (HDF5), written atomically when the stage completes")->required();
+  app.add_option("--vtk", o.vtk_dir, "directory for VTK frames and .pvd series");
+  app.add_option("--checkpoint-every", o.checkpoint_every, "steps between periodic checkpoints (OUT with .restart.h5)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_flag("--restart", o.restart, "resume from the periodic checkpoint if one exists");
+  app.add_flag("--quiet", o.quiet, "no progress output");
+  dem::add_common_options(app, threads);
+  return dem::run_tool(app, argc, argv, threads, [&] { dem::run_stage(o); });
+}

@@ -1,0 +1,53 @@
+#pragma once
+// What every tool shares: --version, --threads, and one place that turns exceptions into messages
+// and exit codes (README "Exit codes").
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <functional>
+#include <omp.h>
+
+#include "core/error.hpp"
+#include "core/version.hpp"
+
+namespace dem {
+
+inline void add_common_options(CLI::App& app, int& threads) {
+  app.set_version_flag("--version", std::string(app.get_name()) + " (dem) " + kVersion);
+  app.add_option("--threads", threads, "OpenMP threads (0 = OMP_NUM_THREADS or all cores); results are identical for any count")
+      ->check(CLI::NonNegativeNumber);
+}
+
+inline int run_tool(CLI::App& app, int argc, char** argv, int& threads, const std::function<void()>& body) {
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return kExitUsage;
+  }
+  if (threads > 0) omp_set_num_threads(threads);
+  const std::string name = app.get_name();
+  try {
+    body();
+    return kExitOk;
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "%s: error: %s\n", name.c_str(), e.what());
+    return kExitInput;
+  } catch (const IoError& e) {
+    std::fprintf(stderr, "%s: error: %s\n", name.c_str(), e.what());
+    return kExitIo;
+  } catch (const PhysicsError& e) {
+    std::fprintf(stderr, "%s: error: unstable simulation: %s\n", name.c_str(), e.what());
+    return kExitPhysics;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: internal error: %s\n", name.c_str(), e.what());
+    return kExitInternal;
+  }
+}
+
+}  // namespace dem
