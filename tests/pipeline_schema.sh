@@ -18,5 +18,12 @@ frames=$(ls "$tmp/vtk/shake"/particles_*.vtu | wc -l)
 [ -s "$tmp/disp.vtu" ] && [ "$(grep -vc '^#' "$tmp/profile.csv")" -eq 6 ]
 # The remove action took the top layer away: post-macro reports removed particles.
 "$bin/post-macro" --reference "$tmp/settled.h5" --in "$tmp/shaken.h5" | grep -q -E "matched by id, [1-9][0-9]* removed since the reference"
+# Tiling and compaction: twice the particles with unique ids, lid stress reported.
+"$bin/copy-settle" --scene "$src/data/tiled.toml" --in "$tmp/settled.h5" --out "$tmp/tiled.h5" --quiet
+"$bin/compact" --scene "$src/data/tiled.toml" --in "$tmp/tiled.h5" --out "$tmp/compacted.h5" --quiet | tee "$tmp/compact.log"
+# The servo holds the lid within 2 % of the 500 Pa target.
+awk '/moving-wall stress/ { s = $4; exit (s < 490 || s > 510) }' "$tmp/compact.log"
+"$py" "$src/check_checkpoint_schema.py" "$tmp/tiled.h5" copy-settle | grep -q "240 particles"
+"$py" "$src/check_checkpoint_schema.py" "$tmp/compacted.h5" compact | grep -q "240 particles"
 ls "$tmp"/*.tmp 2>/dev/null && { echo "temporary files left behind"; exit 1; }
 echo "pipeline ok"

@@ -17,6 +17,15 @@ inline void add_common_options(CLI::App& app, int& threads) {
       ->check(CLI::NonNegativeNumber);
 }
 
+// The options gen-primary, copy-settle and compact share (`needs_input`: all but gen-primary).
+template <class Options>
+void add_generate_options(CLI::App& app, Options& o, bool needs_input) {
+  app.add_option("--scene", o.scene, "scene file (TOML)")->required()->check(CLI::ExistingFile);
+  if (needs_input) app.add_option("--in", o.in, "input checkpoint (HDF5)")->required()->check(CLI::ExistingFile);
+  app.add_option("--out", o.out, "output checkpoint (HDF5), written atomically")->required();
+  app.add_flag("--quiet", o.quiet, "no progress output");
+}
+
 inline int run_tool(CLI::App& app, int argc, char** argv, int& threads, const std::function<void()>& body) {
   try {
     app.parse(argc, argv);

@@ -16,6 +16,9 @@ struct SettleResult {
 // Runs under gravity until the SettleSpec criterion holds or its time cap is reached.
 SettleResult settle(Simulation& sim, const SettleSpec& spec, const std::string& label, bool quiet);
 
+// Mean kinetic energy per particle / (mean mass x |g| x mean diameter): the settle criterion.
+double kinetic_ratio(const Simulation& sim);
+
 // Mean number of contacts per particle (particle and wall contacts), 2 N_pairs / N + N_walls / N.
 double coordination_number(const Simulation& sim);
 

@@ -172,7 +172,8 @@ double Simulation::kinetic_energy() const {
 
 std::vector<Vec3> Simulation::wall_forces() const {
   std::vector<Vec3> f(walls.size(), Vec3::Zero());
-  for (std::size_t k = 0; k < wall_contacts.size(); ++k) f[wall_contacts.slot_j[k]] -= wall_contacts.force[k];
+  // key_j (the wall index) is valid even before the first step after a restart, when slots are not.
+  for (std::size_t k = 0; k < wall_contacts.size(); ++k) f[wall_contacts.key_j[k]] -= wall_contacts.force[k];
   return f;
 }
 
