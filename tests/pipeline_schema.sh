@@ -10,6 +10,7 @@ scene=$src/data/small.toml
 "$bin/post-macro" --reference "$tmp/settled.h5" --in "$tmp/shaken.h5" --vtk "$tmp/disp.vtu" --csv "$tmp/profile.csv" --bins 5
 "$py" "$src/check_checkpoint_schema.py" "$tmp/settled.h5" gen-primary
 "$py" "$src/check_checkpoint_schema.py" "$tmp/shaken.h5" run-stage
+"$py" "$src/check_vtk_output.py" "$tmp/vtk" shake "$tmp/shaken.h5" "$tmp/settled.h5" "$tmp/disp.vtu"
 # 0.03 s at 0.01 s cadence: frames at t0, +0.01, +0.02, end (+0.03 within one step) -> 4 frames.
 frames=$(ls "$tmp/vtk/shake"/particles_*.vtu | wc -l)
 [ "$frames" -eq 4 ] || { echo "expected 4 particle frames, got $frames"; exit 1; }
