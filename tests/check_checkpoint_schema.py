@@ -33,7 +33,10 @@ def main(path, expect_writer):
             "materials/name": ("S", (m,), None), "materials/density": ("f", (m,), "kg/m^3"),
             "materials/kn": ("f", (m,), "N/m"), "materials/kt": ("f", (m,), "N/m"),
             "materials/friction_angle": ("f", (m,), "degree"), "materials/restitution": ("f", (m,), "1"),
-            "materials/tangential_restitution": ("f", (m,), "1"), "materials/mixing": ("i", (3,), None),
+            "materials/tangential_restitution": ("f", (m,), "1"), "materials/mixing": ("i", (4,), None),
+            "materials/tensile_strength": ("f", (m,), "N"), "materials/cohesion": ("f", (m,), "N"),
+            "materials/epsilon": ("f", (m,), "1"), "materials/law": ("i", (m,), None),
+            "materials/no_viscous_attraction": ("i", (m,), None),
             "walls/name": ("S", (w,), None), "walls/material": ("i", (w,), None),
             "walls/vertex_count": ("i", (w,), None), "walls/base_vertices": ("f", (w, 4, 3), "m"),
             "walls/vertices": ("f", (w, 4, 3), "m"), "walls/motion_kind": ("i", (w,), None),
@@ -57,6 +60,9 @@ def main(path, expect_writer):
         assert f["contacts/pair_spring"].shape == (f["contacts/pair_ids"].shape[0], 3)
         assert f["contacts/wall_spring"].shape == (f["contacts/wall_ids"].shape[0], 3)
         assert f["contacts/pair_spring"].attrs["units"] == b"N"
+        assert f["contacts/pair_bonded"].shape == (f["contacts/pair_ids"].shape[0],)
+        assert f["contacts/wall_bonded"].shape == (f["contacts/wall_ids"].shape[0],)
+        assert f["contacts/pair_bonded"].dtype == np.uint8
 
         # Contents consistent with the scene the file carries.
         scene = f["scene/text"][0].decode()

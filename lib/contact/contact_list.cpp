@@ -10,6 +10,7 @@ void ContactList::resize(std::size_t n) {
   slot_i.resize(n);
   slot_j.resize(n);
   spring.resize(n, Vec3::Zero());
+  bonded.resize(n, 0);
   normal.resize(n, Vec3::Zero());
   force.resize(n, Vec3::Zero());
   tangential.resize(n, Vec3::Zero());
@@ -17,21 +18,31 @@ void ContactList::resize(std::size_t n) {
 
 void update_contacts(ContactList& list, const std::vector<FoundContact>& found) {
   // Merge-join of two key-sorted sequences: O(old + new).
-  std::vector<Vec3> spring(found.size(), Vec3::Zero());
+  std::vector<Vec3> spring;
+  std::vector<std::uint8_t> bonded;
+  std::vector<const FoundContact*> kept;
+  spring.reserve(found.size());
+  bonded.reserve(found.size());
+  kept.reserve(found.size());
   std::size_t o = 0;
-  for (std::size_t k = 0; k < found.size(); ++k) {
-    const FoundContact& f = found[k];
+  for (const FoundContact& f : found) {
     while (o < list.size() && (list.key_i[o] < f.key_i || (list.key_i[o] == f.key_i && list.key_j[o] < f.key_j))) ++o;
-    if (o < list.size() && list.key_i[o] == f.key_i && list.key_j[o] == f.key_j) spring[k] = list.spring[o];
+    const bool before = o < list.size() && list.key_i[o] == f.key_i && list.key_j[o] == f.key_j;
+    const std::uint8_t b = before ? list.bonded[o] : 0;
+    if (!f.touching && !b) continue;
+    spring.push_back(before ? list.spring[o] : Vec3::Zero());
+    bonded.push_back(b);
+    kept.push_back(&f);
   }
-  list.resize(found.size());
-  for (std::size_t k = 0; k < found.size(); ++k) {
-    list.key_i[k] = found[k].key_i;
-    list.key_j[k] = found[k].key_j;
-    list.slot_i[k] = found[k].slot_i;
-    list.slot_j[k] = found[k].slot_j;
+  list.resize(kept.size());
+  for (std::size_t k = 0; k < kept.size(); ++k) {
+    list.key_i[k] = kept[k]->key_i;
+    list.key_j[k] = kept[k]->key_j;
+    list.slot_i[k] = kept[k]->slot_i;
+    list.slot_j[k] = kept[k]->slot_j;
   }
   list.spring.swap(spring);
+  list.bonded.swap(bonded);
 }
 
 }  // namespace dem

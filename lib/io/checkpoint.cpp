@@ -69,6 +69,7 @@ class Writer {
     array(name, H5T_NATIVE_INT64, v.data(), dims, nullptr);
   }
   void int32s(const char* name, const std::vector<int>& v) { array(name, H5T_NATIVE_INT, v.data(), {v.size()}, nullptr); }
+  void uint8s(const char* name, const std::vector<std::uint8_t>& v) { array(name, H5T_NATIVE_UINT8, v.data(), {v.size()}, nullptr); }
   void scalar(const char* name, double v, const char* units) { array(name, H5T_NATIVE_DOUBLE, &v, {1}, units); }
   void scalar(const char* name, std::int64_t v) { array(name, H5T_NATIVE_INT64, &v, {1}, nullptr); }
   // Strings as fixed-length byte strings so that the checksum covers their bytes.
@@ -185,6 +186,7 @@ class Reader {
   std::vector<double> doubles(const char* name, long n = -1) { return values<double>(name, H5T_NATIVE_DOUBLE, n); }
   std::vector<std::int64_t> int64s(const char* name, long n = -1, long cols = 0) { return values<std::int64_t>(name, H5T_NATIVE_INT64, n, cols); }
   std::vector<int> int32s(const char* name, long n = -1) { return values<int>(name, H5T_NATIVE_INT, n); }
+  std::vector<std::uint8_t> uint8s(const char* name, long n = -1) { return values<std::uint8_t>(name, H5T_NATIVE_UINT8, n); }
   std::vector<Vec3> vec3s(const char* name, long n = -1) {
     const std::vector<double> flat = values<double>(name, H5T_NATIVE_DOUBLE, n, 3);
     std::vector<Vec3> v(flat.size() / 3);
@@ -294,18 +296,29 @@ void write_all(Writer& w, const Simulation& sim, const CheckpointMeta& meta) {
   w.doubles("/materials/friction_angle", field([](const Material& m) { return m.friction_angle; }), "degree");
   w.doubles("/materials/restitution", field([](const Material& m) { return m.restitution; }), "1");
   w.doubles("/materials/tangential_restitution", field([](const Material& m) { return m.restitution_t; }), "1");
+  w.doubles("/materials/tensile_strength", field([](const Material& m) { return m.tensile_strength; }), "N");
+  w.doubles("/materials/cohesion", field([](const Material& m) { return m.cohesion; }), "N");
+  w.doubles("/materials/epsilon", field([](const Material& m) { return m.epsilon; }), "1");
+  {
+    std::vector<int> law, nva;
+    for (const Material& m : mats) law.push_back(static_cast<int>(m.law)), nva.push_back(m.no_viscous_attraction);
+    w.int32s("/materials/law", law);
+    w.int32s("/materials/no_viscous_attraction", nva);
+  }
   const MixingRules& mix = sim.materials.rules();
-  w.int32s("/materials/mixing", {static_cast<int>(mix.stiffness), static_cast<int>(mix.friction), static_cast<int>(mix.restitution)});
+  w.int32s("/materials/mixing", {static_cast<int>(mix.stiffness), static_cast<int>(mix.friction), static_cast<int>(mix.restitution),
+                                 static_cast<int>(mix.strength)});
 
-  auto contacts = [&](const char* ids, const char* spring, const ContactList& c) {
+  auto contacts = [&](const std::string& kind, const ContactList& c) {
     std::vector<std::int64_t> k(2 * c.size());
     for (std::size_t i = 0; i < c.size(); ++i) k[2 * i] = c.key_i[i], k[2 * i + 1] = c.key_j[i];
-    w.int64s(ids, k, {c.size(), 2});
-    w.vec3s(spring, c.spring, "N");
+    w.int64s(("/contacts/" + kind + "_ids").c_str(), k, {c.size(), 2});
+    w.vec3s(("/contacts/" + kind + "_spring").c_str(), c.spring, "N");
+    w.uint8s(("/contacts/" + kind + "_bonded").c_str(), c.bonded);
   };
   w.group("/contacts");
-  contacts("/contacts/pair_ids", "/contacts/pair_spring", sim.pair_contacts);
-  contacts("/contacts/wall_ids", "/contacts/wall_spring", sim.wall_contacts);
+  contacts("pair", sim.pair_contacts);
+  contacts("wall", sim.wall_contacts);
 
   w.group("/walls");
   const std::size_t nw = sim.walls.size();
@@ -404,29 +417,41 @@ void read_checkpoint(const std::string& path, Simulation& sim, CheckpointMeta& m
   const std::vector<double> density = r.doubles("/materials/density", nm), kn = r.doubles("/materials/kn", nm),
                             kt = r.doubles("/materials/kt", nm), phi = r.doubles("/materials/friction_angle", nm),
                             eta = r.doubles("/materials/restitution", nm), eta_t = r.doubles("/materials/tangential_restitution", nm);
-  const std::vector<int> mix = r.int32s("/materials/mixing", 3);
+  const std::vector<double> strength = r.doubles("/materials/tensile_strength", nm), cohesion = r.doubles("/materials/cohesion", nm),
+                            epsilon = r.doubles("/materials/epsilon", nm);
+  const std::vector<int> law = r.int32s("/materials/law", nm), nva = r.int32s("/materials/no_viscous_attraction", nm);
+  const std::vector<int> mix = r.int32s("/materials/mixing", 4);
   std::vector<Material> mats(nm);
-  for (long k = 0; k < nm; ++k) mats[k] = {names[k], density[k], kn[k], kt[k], phi[k], eta[k], eta_t[k], NormalLaw::Cundall};
+  for (long k = 0; k < nm; ++k) {
+    if (law[k] < 0 || law[k] > 2) throw IoError(path + ": /materials/law holds an unknown law (damaged file)");
+    mats[k] = {names[k], density[k], kn[k], kt[k], phi[k], eta[k], eta_t[k], static_cast<NormalLaw>(law[k]),
+               strength[k], cohesion[k], epsilon[k], nva[k] != 0};
+  }
   for (int m : mix)
     if (m < 0 || m > 3) throw IoError(path + ": /materials/mixing holds an unknown rule (damaged file)");
-  sim.materials = MaterialTable(mats, {static_cast<MixRule>(mix[0]), static_cast<MixRule>(mix[1]), static_cast<MixRule>(mix[2])});
+  // Informational: tools rebuild the contact constants from the scene ([[pair]] entries included).
+  sim.materials = MaterialTable(mats, {static_cast<MixRule>(mix[0]), static_cast<MixRule>(mix[1]), static_cast<MixRule>(mix[2]),
+                                       static_cast<MixRule>(mix[3])});
   for (int m : p.material)
     if (m < 0 || m >= nm) throw IoError(path + ": /particles/material refers to a material that does not exist (damaged file)");
 
-  auto contacts = [&](const char* ids, const char* spring, ContactList& c) {
-    const std::vector<std::int64_t> k = r.int64s(ids, -1, 2);
+  auto contacts = [&](const std::string& kind, ContactList& c) {
+    const std::vector<std::int64_t> k = r.int64s(("/contacts/" + kind + "_ids").c_str(), -1, 2);
     const long nc = static_cast<long>(k.size() / 2);
-    const std::vector<Vec3> s = r.vec3s(spring, nc);
+    const std::vector<Vec3> s = r.vec3s(("/contacts/" + kind + "_spring").c_str(), nc);
+    const std::vector<std::uint8_t> b = r.uint8s(("/contacts/" + kind + "_bonded").c_str(), nc);
     c.resize(nc);
     for (long i = 0; i < nc; ++i) {
       c.key_i[i] = k[2 * i];
       c.key_j[i] = k[2 * i + 1];
       c.slot_i[i] = c.slot_j[i] = -1;  // found again from positions at the next step
       c.spring[i] = s[i];
+      c.bonded[i] = b[i];
     }
   };
-  contacts("/contacts/pair_ids", "/contacts/pair_spring", sim.pair_contacts);
-  contacts("/contacts/wall_ids", "/contacts/wall_spring", sim.wall_contacts);
+  contacts("pair", sim.pair_contacts);
+  contacts("wall", sim.wall_contacts);
+  sim.contacts_changed();
 
   const std::vector<std::string> wnames = r.strings("/walls/name");
   const long nw = static_cast<long>(wnames.size());

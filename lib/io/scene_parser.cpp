@@ -237,6 +237,65 @@ void read_simulation(TableReader& top, Scene& sc) {
   r.finish();
 }
 
+const std::string kCundall = "cundall";
+
+NormalLaw read_law(TableReader& r, const std::string* def) {
+  const std::string v = r.choice("law", {"cundall", "liu", "mendes"}, def);
+  return v == "liu" ? NormalLaw::Liu : v == "mendes" ? NormalLaw::Mendes : NormalLaw::Cundall;
+}
+
+// [[pair]] materials = ["a", "b"] with any material contact key: explicit values for that pair.
+void read_pairs(TableReader& top, Scene& sc) {
+  const auto list = top.tables("pair");
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    TableReader r(*list[k], top.file(), indexed("pair", k));
+    PairOverride o;
+    const toml::node& mn = r.required("materials");
+    const toml::array* a = mn.as_array();
+    if (!a || a->size() != 2) r.fail_at(&mn, "materials", "expected two material names, e.g. [\"sand\", \"steel\"]");
+    int idx[2];
+    for (int e = 0; e < 2; ++e) {
+      const std::string name = r.string_of(*a->get(e), "materials");
+      idx[e] = -1;
+      for (std::size_t m = 0; m < sc.materials.size(); ++m)
+        if (sc.materials[m].name == name) idx[e] = static_cast<int>(m);
+      if (idx[e] < 0) r.fail_at(&mn, "materials", "no material named \"" + name + "\"");
+    }
+    o.a = idx[0];
+    o.b = idx[1];
+    for (const PairOverride& x : sc.pairs)
+      if ((x.a == o.a && x.b == o.b) || (x.a == o.b && x.b == o.a)) r.fail_at(&mn, "materials", "a [[pair]] for these materials is already given");
+    if (r.has("law")) o.law = read_law(r, nullptr);
+    auto opt = [&](const char* key, double lo, double hi, const char* unit, bool lo_open, bool hi_open) -> std::optional<double> {
+      if (!r.has(key)) return std::nullopt;
+      return r.number(key, lo, hi, unit, lo_open, hi_open);
+    };
+    o.kn = opt("kn", 0, kInf, "N/m", true, false);
+    o.kt = opt("kt", 0, kInf, "N/m", false, false);
+    o.friction_angle = opt("friction_angle", 0, 90, "degrees", false, true);
+    o.restitution = opt("restitution", 0, 1, "(eta_n, eq. 2.29)", true, false);
+    o.restitution_t = opt("tangential_restitution", 0, 1, "(eta_t, eq. 2.29)", true, false);
+    o.tensile_strength = opt("tensile_strength", 0, kInf, "N", false, false);
+    o.cohesion = opt("cohesion", 0, kInf, "N", false, false);
+    o.epsilon = opt("epsilon", 0, 1, "(mendes law, eq. 2.23)", true, true);
+    if (r.has("no_viscous_attraction")) o.no_viscous_attraction = r.boolean_or("no_viscous_attraction", false);
+    r.finish();
+    sc.pairs.push_back(o);
+  }
+  // Unlike normal laws have no mixing rule: the pair must say which law applies.
+  for (std::size_t x = 0; x < sc.materials.size(); ++x)
+    for (std::size_t y = x + 1; y < sc.materials.size(); ++y) {
+      if (sc.materials[x].law == sc.materials[y].law) continue;
+      bool given = false;
+      for (const PairOverride& o : sc.pairs)
+        given = given || (((o.a == int(x) && o.b == int(y)) || (o.a == int(y) && o.b == int(x))) && o.law);
+      if (!given)
+        throw InputError(top.file() + ": materials \"" + sc.materials[x].name + "\" and \"" + sc.materials[y].name +
+                         "\" use different laws; add a [[pair]] with materials = [\"" + sc.materials[x].name + "\", \"" +
+                         sc.materials[y].name + "\"] and law = \"...\" (allowed \"cundall\", \"liu\", \"mendes\")");
+    }
+}
+
 void read_materials(TableReader& top, Scene& sc) {
   const auto list = top.tables("material");
   if (list.empty()) {
@@ -250,15 +309,17 @@ void read_materials(TableReader& top, Scene& sc) {
     m.name = r.string("name");
     for (const Material& o : sc.materials)
       if (o.name == m.name) r.fail("name", "duplicate material name");
-    static const std::string cundall = "cundall";
-    r.choice("law", {"cundall"}, &cundall);
-    m.law = NormalLaw::Cundall;
+    m.law = read_law(r, &kCundall);
     m.density = r.number("density", 0, kInf, "kg/m^3", true);
     m.kn = r.number("kn", 0, kInf, "N/m", true);
     m.kt = r.number_or("kt", m.kn, 0, kInf, "N/m");
     m.friction_angle = r.number_or("friction_angle", 0.0, 0, 90, "degrees", false, true);
     m.restitution = r.number_or("restitution", 1.0, 0, 1, "(eta_n, eq. 2.29)", true);
     m.restitution_t = r.number_or("tangential_restitution", m.restitution, 0, 1, "(eta_t, eq. 2.29)", true);
+    m.tensile_strength = r.number_or("tensile_strength", 0.0, 0, kInf, "N (F, bonded contacts)");
+    m.cohesion = r.number_or("cohesion", 0.0, 0, kInf, "N (C, bonded contacts)");
+    m.epsilon = r.number_or("epsilon", m.epsilon, 0, 1, "(mendes law, eq. 2.23)", true, true);
+    m.no_viscous_attraction = r.boolean_or("no_viscous_attraction", false);
     r.finish();
     sc.materials.push_back(m);
   }
@@ -267,8 +328,10 @@ void read_materials(TableReader& top, Scene& sc) {
     sc.mixing.stiffness = read_mix(r, "stiffness", sc.mixing.stiffness);
     sc.mixing.friction = read_mix(r, "friction", sc.mixing.friction);
     sc.mixing.restitution = read_mix(r, "restitution", sc.mixing.restitution);
+    sc.mixing.strength = read_mix(r, "strength", sc.mixing.strength);
     r.finish();
   }
+  read_pairs(top, sc);
 }
 
 void add_wall(TableReader& r, Scene& sc, WallSpec w) {
@@ -466,11 +529,14 @@ void read_stages(TableReader& top, Scene& sc) {
     for (std::size_t a = 0; a < actions.size(); ++a) {
       TableReader ar(*actions[a], top.file(), r.name(indexed("action", a)));
       ActionSpec act;
-      const std::string type = ar.choice("type", {"remove", "reset_reference"});
+      const std::string type = ar.choice("type", {"remove", "reset_reference", "bond"});
       if (type == "remove") {
         act.kind = ActionSpec::Kind::Remove;
         act.region = read_region(ar, "region");
         act.inside = ar.boolean_or("inside", true);
+      } else if (type == "bond") {
+        act.kind = ActionSpec::Kind::Bond;
+        act.walls = ar.boolean_or("walls", false);
       } else {
         act.kind = ActionSpec::Kind::ResetReference;
       }

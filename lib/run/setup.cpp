@@ -11,7 +11,7 @@ namespace dem {
 
 Simulation simulation_from_scene(const Scene& scene) {
   Simulation sim;
-  sim.materials = MaterialTable(scene.materials, scene.mixing);
+  sim.materials = MaterialTable(scene.materials, scene.mixing, scene.pairs);
   for (const WallSpec& w : scene.walls) sim.walls.push_back(Wall{w.name, w.material, w.vertices, WallMotion{}});
   sim.params.gravity = scene.simulation.gravity;
   sim.params.alpha_r = scene.simulation.alpha_r;
@@ -21,7 +21,7 @@ Simulation simulation_from_scene(const Scene& scene) {
 
 void adopt_scene(Simulation& sim, const Scene& scene, WallPositions positions) {
   const MaterialTable old_materials = sim.materials;
-  sim.materials = MaterialTable(scene.materials, scene.mixing);
+  sim.materials = MaterialTable(scene.materials, scene.mixing, scene.pairs);
   std::vector<int> remap(old_materials.size(), -1);
   for (std::size_t k = 0; k < old_materials.size(); ++k) remap[k] = sim.materials.index_of(old_materials.materials()[k].name);
   Particles& p = sim.particles;
@@ -51,11 +51,13 @@ void adopt_scene(Simulation& sim, const Scene& scene, WallPositions positions) {
   ContactList& wc = sim.wall_contacts;
   std::vector<FoundContact> kept;
   std::vector<Vec3> springs;
+  std::vector<std::uint8_t> bonds;
   for (std::size_t k = 0; k < wc.size(); ++k) {
     const Index w = wc.key_j[k];
     if (w >= 0 && w < static_cast<Index>(wall_remap.size()) && wall_remap[w] >= 0) {
       kept.push_back({wc.key_i[k], wall_remap[w], -1, -1});
       springs.push_back(wc.spring[k]);
+      bonds.push_back(wc.bonded[k]);
     }
   }
   std::vector<std::size_t> order(kept.size());
@@ -67,7 +69,9 @@ void adopt_scene(Simulation& sim, const Scene& scene, WallPositions positions) {
     wc.key_j[k] = kept[order[k]].key_j;
     wc.slot_i[k] = wc.slot_j[k] = -1;
     wc.spring[k] = springs[order[k]];
+    wc.bonded[k] = bonds[order[k]];
   }
+  sim.contacts_changed();
 
   sim.params.gravity = scene.simulation.gravity;
   sim.params.alpha_r = scene.simulation.alpha_r;

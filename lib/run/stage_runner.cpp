@@ -30,6 +30,9 @@ void apply_actions(Simulation& sim, const StageSpec& stage) {
   for (const ActionSpec& a : stage.actions) {
     if (a.kind == ActionSpec::Kind::ResetReference) {
       p.x_ref = p.x;
+    } else if (a.kind == ActionSpec::Kind::Bond) {
+      const std::size_t n = sim.bond_present_contacts(a.walls);
+      std::cerr << "stage " << stage.name << ": bonded " << n << " contacts\n";
     } else {
       std::vector<bool> keep(p.size());
       std::size_t removed = 0;
@@ -72,6 +75,8 @@ void run_stage(const StageOptions& o) {
                        " was written with; an exact restart needs the same scene (delete the periodic checkpoint to start over)");
     if (meta.run.stage != stage->name)
       throw InputError(restart_file + ": the periodic checkpoint belongs to stage \"" + meta.run.stage + "\", not \"" + stage->name + "\"");
+    // The same scene text gives the same contact constants, [[pair]] entries included.
+    sim.materials = MaterialTable(scene.materials, scene.mixing, scene.pairs);
     if (!o.quiet) std::cerr << "run-stage: resuming stage " << stage->name << " at step " << sim.step << " from " << restart_file << "\n";
   } else {
     if (o.restart && !o.quiet) std::cerr << "run-stage: no periodic checkpoint " << restart_file << ", starting from " << o.in << "\n";

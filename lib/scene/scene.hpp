@@ -69,10 +69,11 @@ struct Region {
 };
 
 struct ActionSpec {
-  enum class Kind { Remove, ResetReference };
+  enum class Kind { Remove, ResetReference, Bond };
   Kind kind = Kind::Remove;
   Region region;        // Remove
   bool inside = true;   // Remove: particles inside (true) or outside (false) the region
+  bool walls = false;   // Bond: also bond the particles touching walls
 };
 
 struct MotionSpec {
@@ -94,6 +95,7 @@ struct Scene {
   SimulationSpec simulation;
   std::vector<Material> materials;
   MixingRules mixing;
+  std::vector<PairOverride> pairs;  // [[pair]]: explicit parameters for material pairs
   std::vector<WallSpec> walls;
   std::optional<GenerationSpec> generation;
   std::optional<CopySpec> copy;

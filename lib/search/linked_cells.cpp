@@ -5,7 +5,7 @@
 
 namespace dem {
 
-void LinkedCells::find_overlaps(const Particles& p, std::vector<FoundContact>& out) {
+void LinkedCells::find_overlaps(const Particles& p, std::vector<FoundContact>& out, double margin) {
   const int n = static_cast<int>(p.size());
   if (n < 2) return;
   Vec3 lo = p.x[0], hi = p.x[0];
@@ -15,9 +15,9 @@ void LinkedCells::find_overlaps(const Particles& p, std::vector<FoundContact>& o
     hi = hi.cwiseMax(p.x[k]);
     rmax = std::max(rmax, p.radius[k]);
   }
-  // Cell edge >= 2 Rmax (eq. 3.1); widened if needed so the grid has at most ~2N + 27 cells,
+  // Cell edge >= 2 Rmax (+ margin) (eq. 3.1); widened if needed so the grid has at most ~2N + 27 cells,
   // which bounds memory when a particle flies far away.
-  double edge = 2 * rmax;
+  double edge = 2 * rmax + margin;
   const Vec3 span = hi - lo;
   long dims[3];
   for (;;) {
@@ -47,9 +47,11 @@ void LinkedCells::find_overlaps(const Particles& p, std::vector<FoundContact>& o
                                        {-1, 1, 1}, {0, 1, 1},  {1, 1, 1}};
   auto test = [&](int a, int b) {
     const double r = p.radius[a] + p.radius[b];
-    if ((p.x[a] - p.x[b]).squaredNorm() < r * r) {
-      if (p.id[a] < p.id[b]) out.push_back({p.id[a], p.id[b], a, b});
-      else out.push_back({p.id[b], p.id[a], b, a});
+    const double d2 = (p.x[a] - p.x[b]).squaredNorm();
+    if (d2 < (r + margin) * (r + margin)) {
+      const bool touching = d2 < r * r;
+      if (p.id[a] < p.id[b]) out.push_back({p.id[a], p.id[b], a, b, touching});
+      else out.push_back({p.id[b], p.id[a], b, a, touching});
     }
   };
   for (long cz = 0; cz < dims[2]; ++cz)

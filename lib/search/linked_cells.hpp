@@ -11,9 +11,10 @@ namespace dem {
 
 class LinkedCells {
  public:
-  // Appends every overlapping pair (|x_i - x_j| < a_i + a_j) to `out`, keyed by ids
-  // (key_i < key_j), in a deterministic order (not sorted).
-  void find_overlaps(const Particles& p, std::vector<FoundContact>& out);
+  // Appends every pair closer than touching plus `margin` (|x_i - x_j| < a_i + a_j + margin) to
+  // `out`, keyed by ids (key_i < key_j), flagged `touching` when they overlap, in a deterministic
+  // order (not sorted). A margin lets bonded pairs be found while apart (in tension).
+  void find_overlaps(const Particles& p, std::vector<FoundContact>& out, double margin = 0);
 
  private:
   std::vector<int> head_, next_;

@@ -5,91 +5,80 @@
 #include <limits>
 #include <sstream>
 
-#include "contact/cundall.hpp"
+#include "sim/force_loop.hpp"
 #include "core/error.hpp"
 
 namespace dem {
 
 void Simulation::advance() {
   find_contacts();
-  compute_forces();
+  compute_contact_forces(*this, choose_force_variant(*this));
+  sum_forces();
   integrate();
   time += dt;
   ++step;
+  if (has_bonds_) contacts_changed();  // bonds only ever break: stop paying once all are gone
+}
+
+void Simulation::refresh_contacts() { find_contacts(); }
+
+std::size_t Simulation::bond_present_contacts(bool walls_too) {
+  find_contacts();
+  std::size_t n = 0;
+  for (std::size_t k = 0; k < pair_contacts.size(); ++k) pair_contacts.bonded[k] = 1, ++n;
+  if (walls_too)
+    for (std::size_t k = 0; k < wall_contacts.size(); ++k) wall_contacts.bonded[k] = 1, ++n;
+  contacts_changed();
+  return n;
+}
+
+void Simulation::contacts_changed() {
+  has_bonds_ = false;
+  for (std::uint8_t b : pair_contacts.bonded) has_bonds_ = has_bonds_ || b;
+  for (std::uint8_t b : wall_contacts.bonded) has_bonds_ = has_bonds_ || b;
+}
+
+void Simulation::update_wall_geometry() {
+  wall_geometry_.resize(walls.size());
+  for (std::size_t w = 0; w < walls.size(); ++w) {
+    WallGeometry& g = wall_geometry_[w];
+    g.vertices = walls[w].vertices_at(time);
+    g.normal = (g.vertices[1] - g.vertices[0]).cross(g.vertices[2] - g.vertices[0]).normalized();
+    g.velocity = walls[w].motion.velocity_at(time);
+  }
 }
 
 void Simulation::find_contacts() {
+  // Bonded pairs hold in tension until they break: search that much further while bonds exist.
+  const double margin = has_bonds_ ? 1.01 * materials.max_break_separation() : 0.0;
   found_.clear();
-  cells_.find_overlaps(particles, found_);
+  cells_.find_overlaps(particles, found_, margin);
   std::sort(found_.begin(), found_.end());
   update_contacts(pair_contacts, found_);
 
+  update_wall_geometry();
   found_.clear();
   for (std::size_t w = 0; w < walls.size(); ++w) {
-    const std::vector<Vec3> v = walls[w].vertices_at(time);
-    const Vec3 nrm = (v[1] - v[0]).cross(v[2] - v[0]).normalized();
+    const WallGeometry& g = wall_geometry_[w];
     for (std::size_t k = 0; k < particles.size(); ++k) {
-      const Vec3 c = closest_point_on_polygon(v.data(), static_cast<int>(v.size()), nrm, particles.x[k]);
+      const Vec3 c = closest_point_on_polygon(g.vertices.data(), static_cast<int>(g.vertices.size()), g.normal, particles.x[k]);
       const double a = particles.radius[k];
-      if ((c - particles.x[k]).squaredNorm() < a * a)
-        found_.push_back({particles.id[k], static_cast<Index>(w), static_cast<int>(k), static_cast<int>(w)});
+      const double d2 = (c - particles.x[k]).squaredNorm();
+      if (d2 < (a + margin) * (a + margin))
+        found_.push_back({particles.id[k], static_cast<Index>(w), static_cast<int>(k), static_cast<int>(w), d2 < a * a});
     }
   }
   std::sort(found_.begin(), found_.end());
   update_contacts(wall_contacts, found_);
 }
 
-void Simulation::compute_forces() {
+void Simulation::sum_forces() {
   const Particles& p = particles;
   const std::size_t n = p.size();
-  ContactList& pc = pair_contacts;
+  const ContactList& pc = pair_contacts;
+  const ContactList& wc = wall_contacts;
   const long npc = static_cast<long>(pc.size());
-
-  // Forces per contact, each contact written by one thread only.
-#pragma omp parallel for schedule(static)
-  for (long k = 0; k < npc; ++k) {
-    const int i = pc.slot_i[k], j = pc.slot_j[k];
-    const Vec3 d = p.x[j] - p.x[i];
-    const double dist = d.norm();
-    ContactKinematics c;
-    c.n = d / dist;
-    c.overlap = p.radius[i] + p.radius[j] - dist;  // eq. 2.11
-    c.v_rel = p.v[j] - p.v[i];
-    c.w_arm = p.radius[j] * p.w[j] + p.radius[i] * p.w[i];
-    c.m_eff = p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j]);
-    const ContactForce f = CundallLaw::evaluate(materials.pair(p.material[i], p.material[j]), c, dt, pc.spring[k]);
-    pc.normal[k] = c.n;
-    pc.force[k] = f.on_i;
-    pc.tangential[k] = f.tangential;
-  }
-
-  ContactList& wc = wall_contacts;
   const long nwc = static_cast<long>(wc.size());
-  std::vector<std::vector<Vec3>> wv(walls.size());
-  std::vector<Vec3> wn(walls.size()), wvel(walls.size());
-  for (std::size_t w = 0; w < walls.size(); ++w) {
-    wv[w] = walls[w].vertices_at(time);
-    wn[w] = (wv[w][1] - wv[w][0]).cross(wv[w][2] - wv[w][0]).normalized();
-    wvel[w] = walls[w].motion.velocity_at(time);
-  }
-#pragma omp parallel for schedule(static)
-  for (long k = 0; k < nwc; ++k) {
-    const int i = wc.slot_i[k], w = wc.slot_j[k];
-    const Vec3 cp = closest_point_on_polygon(wv[w].data(), static_cast<int>(wv[w].size()), wn[w], p.x[i]);
-    const Vec3 d = cp - p.x[i];
-    const double dist = d.norm();
-    ContactKinematics c;
-    // A centre exactly on the wall has no direction to the contact point: use the plane normal.
-    c.n = dist > 0 ? Vec3(d / dist) : wn[w];
-    c.overlap = p.radius[i] - dist;  // eq. 2.17
-    c.v_rel = wvel[w] - p.v[i];      // eq. 2.18: the wall's velocity enters
-    c.w_arm = p.radius[i] * p.w[i];
-    c.m_eff = p.mass[i];
-    const ContactForce f = CundallLaw::evaluate(materials.pair(p.material[i], walls[w].material), c, dt, wc.spring[k]);
-    wc.normal[k] = c.n;
-    wc.force[k] = f.on_i;
-    wc.tangential[k] = f.tangential;
-  }
 
   // Per-particle lists of contact entries in a fixed order (pairs by key, then walls), so that the
   // sums below give the same bits for any thread count. Entry codes: 2k = pair contact k seen from

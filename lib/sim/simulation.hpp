@@ -18,6 +18,13 @@ struct SimParams {
   double alpha_theta = 0;            // global rotational damping [1/s], eq. 2.37
 };
 
+// A wall's current vertices, plane normal and velocity, computed once per step.
+struct WallGeometry {
+  std::vector<Vec3> vertices;
+  Vec3 normal;
+  Vec3 velocity;
+};
+
 class Simulation {
  public:
   Particles particles;
@@ -33,19 +40,34 @@ class Simulation {
   // One explicit step: contacts and forces at x^n with v^{n-1/2}, then eq. 2.38-2.47.
   void advance();
 
+  // Finds the contacts of the current positions (keeping history), without moving anything.
+  void refresh_contacts();
+  // Stage action `bond`: Φ = 1 for every particle contact present now (and wall contacts if asked).
+  // Returns how many contacts were bonded.
+  std::size_t bond_present_contacts(bool walls_too);
+  bool has_bonds() const { return has_bonds_; }
+  // Call after replacing contact lists (checkpoint read): recounts bonds.
+  void contacts_changed();
+
   // Critical time step of eq. 2.48 (without FRAC): 2 sqrt(M_min / (2 K_max)).
   double critical_time_step() const;
 
   double kinetic_energy() const;  // translational + rotational [J]
   std::vector<Vec3> wall_forces() const;  // force on each wall this step [N]
+  const std::vector<WallGeometry>& wall_geometry() const { return wall_geometry_; }
+  const std::vector<Vec3>& forces() const { return force_; }    // resultant force per particle [N]
+  const std::vector<Vec3>& torques() const { return torque_; }  // resultant torque per particle [N m]
 
  private:
+  void update_wall_geometry();
   void find_contacts();
-  void compute_forces();
+  void sum_forces();
   void integrate();
 
+  bool has_bonds_ = false;
   LinkedCells cells_;
   std::vector<FoundContact> found_;
+  std::vector<WallGeometry> wall_geometry_;
   std::vector<Vec3> force_, torque_;
   std::vector<int> csr_start_, csr_entry_;  // per-particle contact lists, fixed order
 };

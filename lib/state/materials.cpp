@@ -22,21 +22,61 @@ double damping_ratio(double eta) {
   return -l / std::sqrt(std::numbers::pi * std::numbers::pi + l * l);
 }
 
-MaterialTable::MaterialTable(std::vector<Material> materials, MixingRules rules)
+void derive_mendes(PairParams& p, double epsilon) {
+  // eq. 2.23-2.24 (SPEC §6): L = -ln eps, D = F L / (kn (L - 1 - ln L)), A = L / D. For
+  // eps >= 1/e, L <= 1 and there is no tension (Cundall).
+  const double L = -std::log(epsilon);
+  p.mendes_tension = L > 1 && p.tensile_strength > 0;
+  if (!p.mendes_tension) {
+    p.mendes_D = p.mendes_A = p.break_separation = 0;
+    return;
+  }
+  const double D = p.tensile_strength * L / (p.kn * (L - 1 - std::log(L)));
+  const double A = L / D;
+  p.mendes_D = D;
+  p.mendes_A = A;
+  // s0: the positive root of g(s) = D (1 - exp(-A s)) - s beyond the peak s* = D ln(L) / L.
+  // g is concave with g(s*) > 0 and g(D) < 0, so bisection is safe; 200 halvings reach round-off.
+  double lo = D * std::log(L) / L, hi = D;
+  for (int k = 0; k < 200 && hi - lo > 1e-16 * D; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (D * (1 - std::exp(-A * mid)) - mid > 0 ? lo : hi) = mid;
+  }
+  p.break_separation = hi;
+}
+
+MaterialTable::MaterialTable(std::vector<Material> materials, MixingRules rules, const std::vector<PairOverride>& overrides)
     : materials_(std::move(materials)), rules_(rules) {
   const std::size_t n = materials_.size();
   pairs_.resize(n * n);
+  const double deg = std::numbers::pi / 180.0;
   for (std::size_t a = 0; a < n; ++a)
     for (std::size_t b = 0; b < n; ++b) {
       const Material& A = materials_[a];
       const Material& B = materials_[b];
+      const PairOverride* o = nullptr;
+      for (const PairOverride& x : overrides)
+        if ((x.a == static_cast<int>(a) && x.b == static_cast<int>(b)) || (x.a == static_cast<int>(b) && x.b == static_cast<int>(a))) o = &x;
+      auto pick = [&](const std::optional<double> PairOverride::*field, MixRule rule, double va, double vb) {
+        return (o && (o->*field)) ? *(o->*field) : mix(rule, va, vb);
+      };
       PairParams& p = pairs_[a * n + b];
-      p.kn = mix(rules_.stiffness, A.kn, B.kn);
-      p.kt = mix(rules_.stiffness, A.kt, B.kt);
-      const double deg = std::numbers::pi / 180.0;
-      p.mu = std::tan(mix(rules_.friction, A.friction_angle, B.friction_angle) * deg);
-      p.gamma_n = damping_ratio(mix(rules_.restitution, A.restitution, B.restitution));
-      p.gamma_t = damping_ratio(mix(rules_.restitution, A.restitution_t, B.restitution_t));
+      // Unlike laws need an explicit [[pair]] (the parser checks); like laws carry over.
+      p.law = (o && o->law) ? *o->law : A.law;
+      p.kn = pick(&PairOverride::kn, rules_.stiffness, A.kn, B.kn);
+      p.kt = pick(&PairOverride::kt, rules_.stiffness, A.kt, B.kt);
+      p.mu = std::tan(pick(&PairOverride::friction_angle, rules_.friction, A.friction_angle, B.friction_angle) * deg);
+      p.gamma_n = damping_ratio(pick(&PairOverride::restitution, rules_.restitution, A.restitution, B.restitution));
+      p.gamma_t = damping_ratio(pick(&PairOverride::restitution_t, rules_.restitution, A.restitution_t, B.restitution_t));
+      p.tensile_strength = pick(&PairOverride::tensile_strength, rules_.strength, A.tensile_strength, B.tensile_strength);
+      p.cohesion = pick(&PairOverride::cohesion, rules_.strength, A.cohesion, B.cohesion);
+      p.no_viscous_attraction =
+          (o && o->no_viscous_attraction) ? *o->no_viscous_attraction : (A.no_viscous_attraction || B.no_viscous_attraction);
+      switch (p.law) {
+        case NormalLaw::Cundall: p.break_separation = 0; break;
+        case NormalLaw::Liu: p.break_separation = p.tensile_strength / p.kn; break;  // eq. 2.21
+        case NormalLaw::Mendes: derive_mendes(p, pick(&PairOverride::epsilon, rules_.strength, A.epsilon, B.epsilon)); break;
+      }
     }
 }
 
@@ -50,6 +90,19 @@ double MaterialTable::max_stiffness() const {
   double k = 0;
   for (const PairParams& p : pairs_) k = std::max({k, p.kn, p.kt});
   return k;
+}
+
+double MaterialTable::max_break_separation() const {
+  double s = 0;
+  for (const PairParams& p : pairs_) s = std::max(s, p.break_separation);
+  return s;
+}
+
+std::optional<NormalLaw> MaterialTable::common_law() const {
+  if (pairs_.empty()) return NormalLaw::Cundall;
+  for (const PairParams& p : pairs_)
+    if (p.law != pairs_[0].law) return std::nullopt;
+  return pairs_[0].law;
 }
 
 }  // namespace dem

@@ -1,11 +1,14 @@
 #pragma once
 // Materials and the contact parameters of each material pair (SPEC §6, "Mixing rules").
+#include <optional>
 #include <string>
 #include <vector>
 
 namespace dem {
 
-enum class NormalLaw { Cundall };  // `liu` and `mendes` arrive with the "Contact physics" issue
+// Elastic normal law of a material pair (SPEC §6): `cundall` has no tension; `liu` (eq. 2.21) and
+// `mendes` (eq. 2.22-2.25) carry tension on bonded contacts only.
+enum class NormalLaw { Cundall, Liu, Mendes };
 
 struct Material {
   std::string name;
@@ -16,6 +19,10 @@ struct Material {
   double restitution = 0.5;     // normal restitution eta_n, (0, 1]
   double restitution_t = 0.5;   // tangential restitution eta_t, (0, 1]
   NormalLaw law = NormalLaw::Cundall;
+  double tensile_strength = 0;  // F [N], bonded contacts (liu, mendes)
+  double cohesion = 0;          // C [N], bonded contacts (failure surface, fig. 2.13)
+  double epsilon = 1e-4;        // mendes law shape parameter, (0, 1)
+  bool no_viscous_attraction = false;  // clip the total normal force of unbonded contacts at zero
 };
 
 // How a parameter of two unlike materials is combined. Defaults follow SPEC §6.
@@ -25,23 +32,42 @@ struct MixingRules {
   MixRule stiffness = MixRule::Harmonic;  // springs in series: harmonic mean 2 k1 k2 / (k1 + k2)
   MixRule friction = MixRule::Min;
   MixRule restitution = MixRule::Min;
+  MixRule strength = MixRule::Min;        // tensile strength F, cohesion C, epsilon
+};
+
+// Explicit parameters for one material pair, overriding the mixing rules ([[pair]] in a scene).
+struct PairOverride {
+  int a = 0, b = 0;
+  std::optional<NormalLaw> law;
+  std::optional<double> kn, kt, friction_angle, restitution, restitution_t, tensile_strength, cohesion, epsilon;
+  std::optional<bool> no_viscous_attraction;
 };
 
 // Contact constants of one material pair, derived once (STYLE: a law's constants are precomputed).
 struct PairParams {
+  NormalLaw law = NormalLaw::Cundall;
   double kn = 0, kt = 0;
   double mu = 0;        // tan(friction angle)
   double gamma_n = 0;   // damping ratio from restitution, eq. 2.29
   double gamma_t = 0;
+  double tensile_strength = 0;  // F [N]
+  double cohesion = 0;          // C [N]
+  bool no_viscous_attraction = false;
+  // mendes law (eq. 2.23-2.24 with SPEC's signs): T(s) = kn [D (1 - exp(-A s)) - s] for s < s0.
+  bool mendes_tension = false;  // false for epsilon >= 1/e: no tension at all
+  double mendes_D = 0, mendes_A = 0;
+  double break_separation = 0;  // separation s at which a bond breaks: F/kn (liu), s0 (mendes), 0
 };
 
 double mix(MixRule rule, double a, double b);
 double damping_ratio(double restitution);  // gamma = -ln(eta)/sqrt(pi^2 + ln^2 eta), eq. 2.29
+// Fills the mendes constants D, A, the zero s0 of T and whether there is tension at all.
+void derive_mendes(PairParams& p, double epsilon);
 
 class MaterialTable {
  public:
   MaterialTable() = default;
-  MaterialTable(std::vector<Material> materials, MixingRules rules);
+  MaterialTable(std::vector<Material> materials, MixingRules rules, const std::vector<PairOverride>& overrides = {});
 
   const std::vector<Material>& materials() const { return materials_; }
   const MixingRules& rules() const { return rules_; }
@@ -49,6 +75,9 @@ class MaterialTable {
   const PairParams& pair(int a, int b) const { return pairs_[a * materials_.size() + b]; }
   int index_of(const std::string& name) const;  // -1 if absent
   double max_stiffness() const;                 // K_max of eq. 2.48
+  double max_break_separation() const;          // how far apart a bonded pair can still hold
+  // The law all pairs share, or nullopt when the scene mixes laws.
+  std::optional<NormalLaw> common_law() const;
 
  private:
   std::vector<Material> materials_;

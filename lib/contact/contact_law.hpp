@@ -1,14 +1,14 @@
 #pragma once
-// The `cundall` contact law (Cundall & Strack): linear spring-dashpot normal force, incremental
-// tangential spring with Coulomb friction and radial return. A small value type: no state besides
-// the per-contact history passed in (STYLE 1), so it is safe in any thread.
-//
-// How to write another law: give it the same `evaluate` signature, declare what history it needs,
-// and add it to the registry in sim/force_loop.cpp.
+// One contact law composed of independent parts (STYLE 2): an elastic normal law (normal_laws.hpp),
+// viscous damping from restitution (eq. 2.27-2.29), an incremental tangential spring with radial
+// return (eq. 2.13-2.16, 2.26) and the failure surface of fig. 2.13 with cohesion on bonded
+// contacts. Stateless apart from the per-contact history passed in, so safe in any thread.
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 
+#include "contact/normal_laws.hpp"
 #include "core/types.hpp"
-#include "state/materials.hpp"
 
 namespace dem {
 
@@ -26,19 +26,26 @@ struct ContactForce {
   Vec3 tangential;  // tangential part of on_i, for the torques of eq. 2.33-2.34
 };
 
-struct CundallLaw {
-  // `spring` is the stored tangential spring force on i (global vector, SPEC §5 Decision); it is
-  // rotated into the current tangent plane and updated in place.
-  static ContactForce evaluate(const PairParams& p, const ContactKinematics& c, double dt, Vec3& spring) {
+template <class Normal>
+struct ContactLaw {
+  // `spring` is the stored tangential spring force on i (a global vector, SPEC §5 Decision),
+  // rotated into the current tangent plane and updated in place; `bonded` is Φ, cleared when the
+  // bond breaks.
+  static ContactForce evaluate(const PairParams& p, const ContactKinematics& c, double dt, Vec3& spring, std::uint8_t& bonded) {
     const Vec3& n = c.n;
     const double vn = c.v_rel.dot(n);  // > 0 when separating
-    // Normal: f_n = k_n u_n + c_n du_n/dt, du_n/dt = -vn; not clipped (SPEC §6 Decision).
-    const double cn = 2.0 * p.gamma_n * std::sqrt(c.m_eff * p.kn);  // eq. 2.27-2.28
-    const double fn = p.kn * c.overlap - cn * vn;
+    bool broken = false;
+    const double f_el = Normal::elastic(p, c.overlap, bonded != 0, broken);
+    if (broken) bonded = 0;
+    // f_n = f_el + c_n du_n/dt with du_n/dt = -vn, eq. 2.27-2.28; not clipped (SPEC §6 Decision)
+    // unless the pair asks for no_viscous_attraction (unbonded contacts only).
+    const double cn = 2.0 * p.gamma_n * std::sqrt(c.m_eff * p.kn);
+    double fn = f_el - cn * vn;
+    if (!bonded && c.overlap <= 0) fn = 0;  // a pair apart whose bond just broke: no force
+    if (p.no_viscous_attraction && !bonded) fn = std::max(fn, 0.0);
 
     // Tangential relative velocity at the contact point, eq. 2.12.
     const Vec3 vt = c.v_rel - vn * n - c.w_arm.cross(n);
-
     // Keep the spring in the current tangent plane, preserving its magnitude.
     const double s2 = spring.squaredNorm();
     Vec3 s = spring - spring.dot(n) * n;
@@ -48,7 +55,9 @@ struct CundallLaw {
     }
     // Trial force (eq. 2.13-2.15): i is dragged along the motion of j relative to i.
     const Vec3 trial = s + p.kt * dt * vt;
-    const double tau = p.mu * std::max(fn, 0.0);  // Coulomb, unbonded contact (SPEC §6 Decision)
+    // Failure surface (fig. 2.13): Mohr-Coulomb with cohesion on bonded contacts, classic
+    // Coulomb otherwise (SPEC §6 Decision). Tension is already capped at F by the normal law.
+    const double tau = bonded ? std::max(0.0, p.cohesion + p.mu * fn) : p.mu * std::max(fn, 0.0);
     Vec3 ft;
     const double trial_norm = trial.norm();
     if (trial_norm <= tau) {

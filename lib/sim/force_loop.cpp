@@ -1,0 +1,101 @@
+#include "sim/force_loop.hpp"
+
+#include "contact/contact_law.hpp"
+#include "sim/simulation.hpp"
+
+namespace dem {
+
+namespace {
+
+// Each contact is written by one thread only; no atomics (DESIGN.md).
+template <class Normal>
+void pair_forces(Simulation& sim) {
+  const Particles& p = sim.particles;
+  ContactList& pc = sim.pair_contacts;
+  const long n = static_cast<long>(pc.size());
+#pragma omp parallel for schedule(static)
+  for (long k = 0; k < n; ++k) {
+    const int i = pc.slot_i[k], j = pc.slot_j[k];
+    const Vec3 d = p.x[j] - p.x[i];
+    const double dist = d.norm();
+    ContactKinematics c;
+    c.n = d / dist;
+    c.overlap = p.radius[i] + p.radius[j] - dist;  // eq. 2.11
+    c.v_rel = p.v[j] - p.v[i];
+    c.w_arm = p.radius[j] * p.w[j] + p.radius[i] * p.w[i];
+    c.m_eff = p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j]);
+    const ContactForce f =
+        ContactLaw<Normal>::evaluate(sim.materials.pair(p.material[i], p.material[j]), c, sim.dt, pc.spring[k], pc.bonded[k]);
+    pc.normal[k] = c.n;
+    pc.force[k] = f.on_i;
+    pc.tangential[k] = f.tangential;
+  }
+}
+
+template <class Normal>
+void wall_forces(Simulation& sim, const std::vector<WallGeometry>& geo) {
+  const Particles& p = sim.particles;
+  ContactList& wc = sim.wall_contacts;
+  const long n = static_cast<long>(wc.size());
+#pragma omp parallel for schedule(static)
+  for (long k = 0; k < n; ++k) {
+    const int i = wc.slot_i[k], w = wc.slot_j[k];
+    const WallGeometry& g = geo[w];
+    const Vec3 cp = closest_point_on_polygon(g.vertices.data(), static_cast<int>(g.vertices.size()), g.normal, p.x[i]);
+    const Vec3 d = cp - p.x[i];
+    const double dist = d.norm();
+    ContactKinematics c;
+    // A centre exactly on the wall has no direction to the contact point: use the plane normal.
+    c.n = dist > 0 ? Vec3(d / dist) : g.normal;
+    c.overlap = p.radius[i] - dist;  // eq. 2.17
+    c.v_rel = g.velocity - p.v[i];   // eq. 2.18: the wall's velocity enters
+    c.w_arm = p.radius[i] * p.w[i];
+    c.m_eff = p.mass[i];
+    const ContactForce f =
+        ContactLaw<Normal>::evaluate(sim.materials.pair(p.material[i], sim.walls[w].material), c, sim.dt, wc.spring[k], wc.bonded[k]);
+    wc.normal[k] = c.n;
+    wc.force[k] = f.on_i;
+    wc.tangential[k] = f.tangential;
+  }
+}
+
+template <class Normal>
+void all_forces(Simulation& sim) {
+  pair_forces<Normal>(sim);
+  wall_forces<Normal>(sim, sim.wall_geometry());
+}
+
+}  // namespace
+
+ForceVariant choose_force_variant(const Simulation& sim) {
+  if (!sim.has_bonds()) return ForceVariant::Cundall;
+  const std::optional<NormalLaw> law = sim.materials.common_law();
+  if (!law) return ForceVariant::Mixed;
+  switch (*law) {
+    case NormalLaw::Cundall: return ForceVariant::Cundall;
+    case NormalLaw::Liu: return ForceVariant::Liu;
+    case NormalLaw::Mendes: return ForceVariant::Mendes;
+  }
+  return ForceVariant::Mixed;
+}
+
+const char* variant_name(ForceVariant v) {
+  switch (v) {
+    case ForceVariant::Cundall: return "cundall";
+    case ForceVariant::Liu: return "liu";
+    case ForceVariant::Mendes: return "mendes";
+    case ForceVariant::Mixed: return "mixed";
+  }
+  return "?";
+}
+
+void compute_contact_forces(Simulation& sim, ForceVariant variant) {
+  switch (variant) {
+    case ForceVariant::Cundall: all_forces<CundallNormal>(sim); break;
+    case ForceVariant::Liu: all_forces<LiuNormal>(sim); break;
+    case ForceVariant::Mendes: all_forces<MendesNormal>(sim); break;
+    case ForceVariant::Mixed: all_forces<MixedNormal>(sim); break;
+  }
+}
+
+}  // namespace dem
