@@ -61,7 +61,10 @@ struct ContactLaw {
     Vec3 ft;
     const double trial_norm = trial.norm();
     if (trial_norm <= tau) {
-      const double ct = 2.0 * p.gamma_t * std::sqrt(c.m_eff * p.kt);
+      // The contact point's tangential motion has the effective mass 2/7 m* (solid spheres that
+      // also spin: 1/m_t = 7/2 (1/m_i + 1/m_j)), so eq. 2.28 with m* would over-damp it by
+      // sqrt(7/2) and make near-critical eta_t unstable in the explicit scheme.
+      const double ct = 2.0 * p.gamma_t * std::sqrt(2.0 / 7.0 * c.m_eff * p.kt);
       spring = trial;
       ft = trial + ct * vt;  // sticking, damped
     } else {

@@ -44,7 +44,8 @@ void Simulation::update_wall_geometry() {
     WallGeometry& g = wall_geometry_[w];
     g.vertices = walls[w].vertices_at(time);
     g.normal = (g.vertices[1] - g.vertices[0]).cross(g.vertices[2] - g.vertices[0]).normalized();
-    g.velocity = walls[w].motion.velocity_at(time);
+    // At t^{n-1/2}, the time of the particles' velocities it is compared with (eq. 2.18).
+    g.velocity = walls[w].motion.velocity_at(time - 0.5 * dt);
   }
 }
 

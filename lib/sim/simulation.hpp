@@ -22,7 +22,7 @@ struct SimParams {
 struct WallGeometry {
   std::vector<Vec3> vertices;
   Vec3 normal;
-  Vec3 velocity;
+  Vec3 velocity;  // at t^{n-1/2}, like the particles' velocities
 };
 
 class Simulation {

@@ -1,0 +1,180 @@
+// Contact-physics benchmarks (issue "Contact physics"):
+//   contact_bench frac-sweep   speed against error: for each FRAC of eq. 2.48, the restitution and
+//                              contact-duration errors of a binary collision and the cost per
+//                              simulated second of a 10,000-sphere settling scene
+//   contact_bench variants     the price of each physics option on one packing: plain linear
+//                              contact, walls, adhesion law with bonds (liu, mendes), mixed laws
+// Prints markdown tables; bench/run_contact_bench.sh writes them to bench/results/contact.md.
+#include <omp.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <numbers>
+#include <random>
+#include <string>
+
+#include "sim/force_loop.hpp"
+#include "sim/simulation.hpp"
+
+using namespace dem;
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+Material bead(double eta) {
+  Material m;
+  m.name = "bead";
+  m.density = 2500;
+  m.kn = 2000;
+  m.kt = 2.0 / 7.0 * 2000;
+  m.friction_angle = std::atan(0.5) * 180 / std::numbers::pi;
+  m.restitution = m.restitution_t = eta;
+  return m;
+}
+
+// Binary head-on collision of two 1 mm spheres at 0.2 m/s relative speed: realised restitution
+// and contact duration against eta and pi/omega_d (the analytic answers).
+void collision_errors(double frac, double eta, double& e_err, double& t_err) {
+  Simulation sim;
+  sim.materials = MaterialTable({bead(eta)}, {});
+  sim.params.gravity = Vec3::Zero();
+  const double a = 0.001, v0 = 0.1;
+  sim.particles.add(0, Vec3(0, 0, 1.001 * a), a, 2500, 0);
+  sim.particles.add(1, Vec3(0, 0, -1.001 * a), a, 2500, 0);
+  sim.particles.v[0] = Vec3(0, 0, -v0);
+  sim.particles.v[1] = Vec3(0, 0, v0);
+  sim.dt = frac * sim.critical_time_step();
+  int steps = 0;
+  bool touched = false;
+  for (int s = 0; s < 10000000; ++s) {
+    sim.advance();
+    const bool c = sim.pair_contacts.size() > 0;
+    steps += c;
+    touched = touched || c;
+    if (touched && !c) break;
+  }
+  const double e = (sim.particles.v[0].z() - sim.particles.v[1].z()) / (2 * v0);
+  const double m_eff = sphere_mass(2500, a) / 2;
+  const double l = std::log(eta), gamma = -l / std::sqrt(std::numbers::pi * std::numbers::pi + l * l);
+  const double tc = std::numbers::pi / (std::sqrt(2000 / m_eff) * std::sqrt(1 - gamma * gamma));
+  e_err = (e - eta) / eta;
+  t_err = (steps * sim.dt - tc) / tc;
+}
+
+// The settle scene of ../shared/peers (regenerated here): N spheres of radius 1 mm on a simple
+// cubic lattice of spacing 2.5 mm with random velocities in [-0.1, 0.1] m/s, in a closed box.
+Simulation settle_scene(int nx, int ny, int nz, double eta, bool walls) {
+  Simulation sim;
+  sim.materials = MaterialTable({bead(eta)}, {});
+  const double s = 0.0025;
+  const Vec3 hi(nx * s, ny * s, nz * s + 0.01);
+  if (walls)
+    for (int axis = 0; axis < 3; ++axis)
+      for (int side = 0; side < 2; ++side) {
+        const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+        Wall w{"w", 0, {}, {}};
+        for (auto [su, sv] : {std::pair{0, 0}, {1, 0}, {1, 1}, {0, 1}}) {
+          Vec3 p;
+          p[axis] = side ? hi[axis] : 0.0;
+          p[u] = su ? hi[u] : 0.0;
+          p[v] = sv ? hi[v] : 0.0;
+          w.base.push_back(p);
+        }
+        sim.walls.push_back(w);
+      }
+  std::mt19937_64 rng(12345);
+  std::uniform_real_distribution<double> vel(-0.1, 0.1);
+  Index id = 0;
+  for (int k = 0; k < nz; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        sim.particles.add(id, Vec3((i + 0.5) * s, (j + 0.5) * s, (k + 0.5) * s), 0.001, 2500, 0);
+        sim.particles.v[id] = Vec3(vel(rng), vel(rng), vel(rng));
+        ++id;
+      }
+  return sim;
+}
+
+void frac_sweep() {
+  std::printf("| FRAC | dt / dt_crit | restitution error, eta = 0.5 | contact-time error, eta = 0.5 | restitution error, eta = 0.05 | "
+              "contact-time error, eta = 0.05 | settle 10k: wall s per simulated s | steps per contact |\n");
+  std::printf("|---|---|---|---|---|---|---|---|\n");
+  for (double frac : {0.02, 0.05, 0.1, 0.2, 0.3, 0.5}) {
+    double e5, t5, e05, t05;
+    collision_errors(frac, 0.5, e5, t5);
+    collision_errors(frac, 0.05, e05, t05);
+    Simulation sim = settle_scene(25, 25, 16, 0.5, true);
+    sim.dt = frac * sim.critical_time_step();
+    for (int k = 0; k < 200; ++k) sim.advance();  // warm up: contacts form
+    const int steps = 2000;
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int k = 0; k < steps; ++k) sim.advance();
+    const double wall = seconds_since(t0);
+    const double m = sphere_mass(2500, 0.001) / 2;
+    std::printf("| %.2f | %.2f | %+.2f %% | %+.2f %% | %+.2f %% | %+.2f %% | %.3g | %.0f |\n", frac, frac, 100 * e5, 100 * t5, 100 * e05, 100 * t05,
+                wall / (steps * sim.dt), std::numbers::pi * std::sqrt(m / 2000) / sim.dt);
+    std::fflush(stdout);
+  }
+}
+
+void variants() {
+  // One packing for all variants: the settle scene after 0.1 s, when it has collapsed into a pile.
+  // Each variant then runs 300 steps from that same state, so all see the same contacts.
+  Simulation base = settle_scene(25, 25, 16, 0.5, true);
+  base.dt = 0.1 * base.critical_time_step();
+  while (base.time < 0.1) base.advance();
+  std::printf("| variant | force loop | contacts | ns per particle-step, 1 thread | ns per particle-step, 2 threads | relative to cundall + walls (1 thread) |\n");
+  std::printf("|---|---|---|---|---|---|\n");
+  double reference = 0;
+  struct Case {
+    const char* name;
+    NormalLaw law;
+    bool walls, bonds;
+  };
+  for (const Case& c : {Case{"cundall, 6 walls", NormalLaw::Cundall, true, false},
+                        Case{"cundall, no walls (gravity off)", NormalLaw::Cundall, false, false},
+                        Case{"liu law, no bond formed", NormalLaw::Liu, true, false},
+                        Case{"liu, every contact bonded", NormalLaw::Liu, true, true},
+                        Case{"mendes, every contact bonded", NormalLaw::Mendes, true, true}}) {
+    double ns[2];
+    std::size_t contacts = 0;
+    const char* variant = "";
+    for (int t = 0; t < 2; ++t) {
+      Simulation sim = base;
+      Material m = bead(0.5);
+      m.law = c.law;
+      m.tensile_strength = 1e-2;  // N: strong enough that bonds hold over the run
+      m.cohesion = 1e-2;
+      sim.materials = MaterialTable({m}, {});
+      if (!c.walls) sim.walls.clear(), sim.wall_contacts.clear(), sim.params.gravity = Vec3::Zero();
+      if (c.bonds) sim.bond_present_contacts(true);
+      variant = variant_name(choose_force_variant(sim));
+      omp_set_num_threads(t == 0 ? 1 : 2);
+      const int steps = 300;
+      const auto t0 = std::chrono::steady_clock::now();
+      for (int k = 0; k < steps; ++k) sim.advance();
+      ns[t] = 1e9 * seconds_since(t0) / (steps * sim.particles.size());
+      contacts = sim.pair_contacts.size() + sim.wall_contacts.size();
+    }
+    if (reference == 0) reference = ns[0];
+    std::printf("| %s | %s | %zu | %.0f | %.0f | %.2f |\n", c.name, variant, contacts, ns[0], ns[1], ns[0] / reference);
+    std::fflush(stdout);
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc == 2 && std::strcmp(argv[1], "frac-sweep") == 0) frac_sweep();
+  else if (argc == 2 && std::strcmp(argv[1], "variants") == 0) variants();
+  else {
+    std::fprintf(stderr, "usage: contact_bench frac-sweep|variants\n");
+    return 2;
+  }
+  return 0;
+}

@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Builds and runs the contact-physics benchmarks; writes bench/results/contact.md.
+# Usage: bash bench/run_contact_bench.sh   (from the repository root; about 5 minutes on 2 cores)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+make -f Makefile.cases build > /dev/null
+out=bench/results/contact.md
+{
+  echo "# Contact physics: speed against error, and the price of each option"
+  echo
+  echo "Measured $(date -u +%Y-%m-%d) on $(nproc) cores ($(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')),"
+  echo "dem $(build/tools/run-stage --version | awk '{print $NF}'), g++ -O2. Reproduce: \`bash bench/run_contact_bench.sh\`."
+  echo
+  echo "## Speed against error (FRAC of eq. 2.48)"
+  echo
+  echo "Binary collision of two 1 mm glass spheres (k_n = 2000 N/m) against the analytic restitution"
+  echo "eta and damped half-period pi/omega_d; cost per simulated second of the 10,000-sphere settle"
+  echo "scene of ../shared/peers (closed box, friction 0.5, eta = 0.5), all threads."
+  echo
+  build/bench/contact_bench frac-sweep
+  echo
+  echo "## The price of each physics option (same packing: the settle scene after 40,000 steps)"
+  echo
+  build/bench/contact_bench variants
+} > "$out.tmp"
+mv "$out.tmp" "$out"
+cat "$out"
