@@ -88,7 +88,12 @@ int MaterialTable::index_of(const std::string& name) const {
 
 double MaterialTable::max_stiffness() const {
   double k = 0;
-  for (const PairParams& p : pairs_) k = std::max({k, p.kn, p.kt});
+  for (const PairParams& p : pairs_) {
+    k = std::max({k, p.kn, p.kt});
+    // The mendes attraction starts with slope T'(0) = kn (D A - 1) = kn (L - 1), steeper than kn
+    // for eps < 1/e^2 (8.2 kn at eps = 1e-4): eq. 2.48 must see it.
+    if (p.law == NormalLaw::Mendes && p.mendes_tension) k = std::max(k, p.kn * (p.mendes_D * p.mendes_A - 1));
+  }
   return k;
 }
 

@@ -1,0 +1,57 @@
+// Wall contact geometry (SPEC §3, eq. 2.4-2.5): the contact point is the projection of the centre
+// if it falls inside the polygon, else the nearest point of its boundary (edge or vertex); the
+// force acts along the line from that point to the centre. Expected points are computed by hand.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "sim/simulation.hpp"
+#include "walls/wall.hpp"
+
+namespace dem {
+namespace {
+
+const std::vector<Vec3> kTriangle = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
+
+Vec3 closest(const Vec3& p) { return closest_point_on_polygon(kTriangle.data(), 3, Vec3::UnitZ(), p); }
+
+TEST(WallGeometry, FaceEdgeAndVertexRegions) {
+  EXPECT_EQ(closest(Vec3(0.2, 0.3, 0.5)), Vec3(0.2, 0.3, 0)) << "face: projection";
+  EXPECT_EQ(closest(Vec3(0.5, -0.4, 0.1)), Vec3(0.5, 0, 0)) << "edge y = 0";
+  EXPECT_TRUE(closest(Vec3(0.8, 0.8, -0.2)).isApprox(Vec3(0.5, 0.5, 0), 1e-15)) << "hypotenuse";
+  EXPECT_EQ(closest(Vec3(-0.3, -0.2, 0.1)), Vec3(0, 0, 0)) << "vertex at the origin";
+  EXPECT_EQ(closest(Vec3(1.5, -0.1, 0)), Vec3(1, 0, 0)) << "vertex (1, 0, 0)";
+}
+
+TEST(WallGeometry, PolygonChecks) {
+  EXPECT_EQ(polygon_problem(kTriangle), "");
+  EXPECT_NE(polygon_problem({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(1, 1, 0)}), "") << "bow-tie quad";
+  EXPECT_NE(polygon_problem({Vec3(0, 0, 0), Vec3(1, 0, 0)}), "") << "two vertices";
+}
+
+// A sphere resting against an edge (or a vertex) of a triangle feels the linear spring force
+// k_n u along the line from the contact point to its centre, where u = a - distance.
+TEST(WallContact, EdgeAndVertexForceAlongTheLineToTheCentre) {
+  Material m;
+  m.name = "m";
+  m.kn = m.kt = 1e4;
+  m.restitution = m.restitution_t = 1.0;  // no damping: the force is the spring alone
+  for (const Vec3& centre : {Vec3(0.5, -0.0008, 0.0006), Vec3(-0.0006, -0.0006, 0.0005)}) {
+    Simulation sim;
+    sim.materials = MaterialTable({m}, {});
+    sim.params.gravity = Vec3::Zero();
+    sim.walls.push_back(Wall{"tri", 0, kTriangle, {}});
+    const double a = 0.0011;
+    sim.particles.add(0, centre, a, 2500, 0);
+    sim.dt = 1e-9;
+    sim.advance();
+    ASSERT_EQ(sim.wall_contacts.size(), 1u);
+    const Vec3 cp = closest(centre);
+    const Vec3 d = centre - cp;
+    const Vec3 want = 1e4 * (a - d.norm()) * d.normalized();
+    EXPECT_TRUE(sim.wall_contacts.force[0].isApprox(want, 1e-12)) << sim.wall_contacts.force[0].transpose() << " vs " << want.transpose();
+  }
+}
+
+}  // namespace
+}  // namespace dem
