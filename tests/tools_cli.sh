@@ -43,6 +43,8 @@ check "truncated checkpoint" 4 "cut.h5" -- "$bin/post-macro" --reference "$tmp/a
 check "unknown stage" 3 'no \[\[stage\]\] named "drill" (defined: shake, long)' -- "$bin/run-stage" --scene "$data/small.toml" --stage drill --in "$tmp/a.h5" --out "$tmp/b.h5"
 sed 's/^frac = 0.1/frac = 0.1\ntime_step = 1.0e-3/' "$data/small.toml" > "$tmp/fast.toml"
 check "time step above critical" 3 "exceeds the critical time step" -- "$bin/run-stage" --scene "$tmp/fast.toml" --stage shake --in "$tmp/a.h5" --out "$tmp/b.h5"
+sed 's/^frac = 0.1/frac = 0.1\ntime_step = 1.0e-4\nforce_time_step = true/' "$data/small.toml" > "$tmp/forced.toml"
+check "forced time step warns" 0 "warning: forced time step 0.0001 s exceeds the critical step" -- "$bin/run-stage" --scene "$tmp/forced.toml" --stage shake --in "$tmp/a.h5" --out "$tmp/forced.h5" --quiet
 sed 's/^name = "glass"/name = "sand"/; s/glass = 1.0/sand = 1.0/' "$data/small.toml" > "$tmp/other.toml"
 check "material missing from scene" 3 'material "glass", which this scene does not define' -- "$bin/run-stage" --scene "$tmp/other.toml" --stage shake --in "$tmp/a.h5" --out "$tmp/b.h5"
 [ -e "$tmp/b.h5" ] && { echo "FAIL output written after failed runs"; fail=1; }

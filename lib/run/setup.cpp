@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <iostream>
 #include <sstream>
 
 #include "core/error.hpp"
@@ -91,6 +92,9 @@ double choose_time_step(const Simulation& sim, const SimulationSpec& spec) {
          "simulation.force_time_step = true";
     throw InputError(m.str());
   }
+  if (spec.time_step > critical)
+    std::cerr << "warning: forced time step " << spec.time_step << " s exceeds the critical step " << critical
+              << " s of eq. 2.48: expect an unstable run\n";
   return spec.time_step;
 }
 

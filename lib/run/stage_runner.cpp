@@ -84,8 +84,6 @@ void run_stage(const StageOptions& o) {
     adopt_scene(sim, scene);
     apply_actions(sim, *stage);
     sim.dt = choose_time_step(sim, scene.simulation);
-    if (scene.simulation.time_step > sim.critical_time_step())
-      std::cerr << "warning: forced time step " << sim.dt << " s exceeds the critical step " << sim.critical_time_step() << " s (eq. 2.48)\n";
     start_motions(sim, *stage);
     meta.run = RunInfo{stage->name, sim.step, static_cast<std::int64_t>(std::ceil(stage->duration / sim.dt - 1e-9)), sim.time, {}};
   }
