@@ -234,6 +234,7 @@ void read_simulation(TableReader& top, Scene& sc) {
   s.gravity = r.vec3_or("gravity", s.gravity);
   s.alpha_r = r.number_or("alpha_r", 0.0, 0, kInf, "1/s");
   s.alpha_theta = r.number_or("alpha_theta", 0.0, 0, kInf, "1/s");
+  s.skin = r.number_or("skin", 0.0, 0, kInf, "m (0 = 0.2 x mean radius)");
   r.finish();
 }
 

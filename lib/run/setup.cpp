@@ -17,6 +17,7 @@ Simulation simulation_from_scene(const Scene& scene) {
   sim.params.gravity = scene.simulation.gravity;
   sim.params.alpha_r = scene.simulation.alpha_r;
   sim.params.alpha_theta = scene.simulation.alpha_theta;
+  sim.params.skin = scene.simulation.skin;
   return sim;
 }
 
@@ -77,6 +78,7 @@ void adopt_scene(Simulation& sim, const Scene& scene, WallPositions positions) {
   sim.params.gravity = scene.simulation.gravity;
   sim.params.alpha_r = scene.simulation.alpha_r;
   sim.params.alpha_theta = scene.simulation.alpha_theta;
+  sim.params.skin = scene.simulation.skin;
 }
 
 double choose_time_step(const Simulation& sim, const SimulationSpec& spec) {

@@ -18,6 +18,7 @@ struct SimulationSpec {
   bool force_time_step = false;  // allow a time_step above the critical one
   Vec3 gravity = Vec3(0, 0, -9.81);
   double alpha_r = 0, alpha_theta = 0;  // global damping [1/s], eq. 2.36-2.37
+  double skin = 0;                      // neighbour-list skin [m]; 0 = automatic
 };
 
 struct WallSpec {

@@ -49,27 +49,42 @@ void Simulation::update_wall_geometry() {
   }
 }
 
+double Simulation::skin() const {
+  if (params.skin > 0) return params.skin;
+  double sum = 0;
+  for (double a : particles.radius) sum += a;
+  return particles.size() ? 0.2 * sum / particles.size() : 0.0;  // 0.2 x mean radius
+}
+
 void Simulation::find_contacts() {
-  // Bonded pairs hold in tension until they break: search that much further while bonds exist.
+  // Bonded pairs hold in tension until they break: list that much further while bonds exist.
   const double margin = has_bonds_ ? 1.01 * materials.max_break_separation() : 0.0;
-  found_.clear();
-  cells_.find_overlaps(particles, found_, margin);
-  std::sort(found_.begin(), found_.end());
+  update_wall_geometry();
+  neighbours_.update(particles, wall_geometry_, margin, skin());
+
+  // The contacts of this step: the listed candidates that touch now (bonded ones also while apart),
+  // already in key order, so no sort is needed between rebuilds.
+  const Particles& p = particles;
+  found_ = neighbours_.pairs();
+  const long np = static_cast<long>(found_.size());
+#pragma omp parallel for schedule(static)
+  for (long k = 0; k < np; ++k) {
+    FoundContact& f = found_[k];
+    const double r = p.radius[f.slot_i] + p.radius[f.slot_j];
+    f.touching = (p.x[f.slot_i] - p.x[f.slot_j]).squaredNorm() < r * r;
+  }
   update_contacts(pair_contacts, found_);
 
-  update_wall_geometry();
-  found_.clear();
-  for (std::size_t w = 0; w < walls.size(); ++w) {
-    const WallGeometry& g = wall_geometry_[w];
-    for (std::size_t k = 0; k < particles.size(); ++k) {
-      const Vec3 c = closest_point_on_polygon(g.vertices.data(), static_cast<int>(g.vertices.size()), g.normal, particles.x[k]);
-      const double a = particles.radius[k];
-      const double d2 = (c - particles.x[k]).squaredNorm();
-      if (d2 < (a + margin) * (a + margin))
-        found_.push_back({particles.id[k], static_cast<Index>(w), static_cast<int>(k), static_cast<int>(w), d2 < a * a});
-    }
+  found_ = neighbours_.wall_pairs();
+  const long nw = static_cast<long>(found_.size());
+#pragma omp parallel for schedule(static)
+  for (long k = 0; k < nw; ++k) {
+    FoundContact& f = found_[k];
+    const WallGeometry& g = wall_geometry_[f.slot_j];
+    const Vec3 c = closest_point_on_polygon(g.vertices.data(), static_cast<int>(g.vertices.size()), g.normal, p.x[f.slot_i]);
+    const double a = p.radius[f.slot_i];
+    f.touching = (c - p.x[f.slot_i]).squaredNorm() < a * a;
   }
-  std::sort(found_.begin(), found_.end());
   update_contacts(wall_contacts, found_);
 }
 

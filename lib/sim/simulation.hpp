@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "contact/contact_list.hpp"
-#include "search/linked_cells.hpp"
+#include "search/neighbour_list.hpp"
 #include "state/materials.hpp"
 #include "state/particles.hpp"
 #include "walls/wall.hpp"
@@ -16,13 +16,8 @@ struct SimParams {
   Vec3 gravity = Vec3(0, 0, -9.81);  // [m/s^2]
   double alpha_r = 0;                // global translational damping [1/s], eq. 2.36
   double alpha_theta = 0;            // global rotational damping [1/s], eq. 2.37
-};
-
-// A wall's current vertices, plane normal and velocity, computed once per step.
-struct WallGeometry {
-  std::vector<Vec3> vertices;
-  Vec3 normal;
-  Vec3 velocity;  // at t^{n-1/2}, like the particles' velocities
+  double skin = 0;                   // neighbour-list skin [m]; 0 = 0.2 x mean radius. Speed only:
+                                     // the contacts found do not depend on it
 };
 
 class Simulation {
@@ -52,6 +47,9 @@ class Simulation {
   // Critical time step of eq. 2.48 (without FRAC): 2 sqrt(M_min / (2 K_max)).
   double critical_time_step() const;
 
+  double skin() const;  // the neighbour-list skin in use [m]
+  std::int64_t neighbour_builds() const { return neighbours_.builds(); }
+
   double kinetic_energy() const;  // translational + rotational [J]
   std::vector<Vec3> wall_forces() const;  // force on each wall this step [N]
   const std::vector<WallGeometry>& wall_geometry() const { return wall_geometry_; }
@@ -65,7 +63,7 @@ class Simulation {
   void integrate();
 
   bool has_bonds_ = false;
-  LinkedCells cells_;
+  NeighbourList neighbours_;
   std::vector<FoundContact> found_;
   std::vector<WallGeometry> wall_geometry_;
   std::vector<Vec3> force_, torque_;

@@ -32,6 +32,13 @@ struct Wall {
   void start_motion(const WallMotion& m, double t);
 };
 
+// A wall's current vertices, plane normal and velocity, computed once per step.
+struct WallGeometry {
+  std::vector<Vec3> vertices;
+  Vec3 normal;
+  Vec3 velocity;  // at t^{n-1/2}, like the particles' velocities
+};
+
 // Closest point of a convex planar polygon to p (eq. 2.4-2.5: projection if inside, else the
 // nearest point of the boundary: edge or vertex). `unit_normal` is the polygon's plane normal.
 Vec3 closest_point_on_polygon(const Vec3* verts, int n_verts, const Vec3& unit_normal, const Vec3& p);

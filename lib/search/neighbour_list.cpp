@@ -1,0 +1,64 @@
+#include "search/neighbour_list.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace dem {
+
+bool NeighbourList::needs_rebuild(const Particles& p, const std::vector<WallGeometry>& walls, double margin, double skin) const {
+  if (!valid_ || margin != margin_build_ || skin != skin_build_ || p.size() != x_build_.size() || walls.size() != wall_build_.size())
+    return true;
+  // Two particles approach by at most twice the largest displacement, a particle and a wall by the
+  // particle's displacement plus the wall's (a planar polygon moves no further than its vertices).
+  double dp2 = 0;
+  bool same_ids = true;
+  const long n = static_cast<long>(p.size());
+#pragma omp parallel for schedule(static) reduction(max : dp2) reduction(&& : same_ids)
+  for (long k = 0; k < n; ++k) {
+    dp2 = std::max(dp2, (p.x[k] - x_build_[k]).squaredNorm());
+    same_ids = same_ids && p.id[k] == id_build_[k];
+  }
+  if (!same_ids) return true;
+  const double dp = std::sqrt(dp2);
+  double dw = 0;
+  for (std::size_t w = 0; w < walls.size(); ++w) {
+    if (walls[w].vertices.size() != wall_build_[w].size()) return true;
+    for (std::size_t v = 0; v < walls[w].vertices.size(); ++v) dw = std::max(dw, (walls[w].vertices[v] - wall_build_[w][v]).norm());
+  }
+  return 2 * dp > skin || dp + dw > skin;
+}
+
+void NeighbourList::build(const Particles& p, const std::vector<WallGeometry>& walls, double margin, double skin) {
+  pairs_.clear();
+  cells_.find_overlaps(p, pairs_, margin + skin);
+  std::sort(pairs_.begin(), pairs_.end());
+
+  wall_pairs_.clear();
+  for (std::size_t w = 0; w < walls.size(); ++w) {
+    const WallGeometry& g = walls[w];
+    for (std::size_t k = 0; k < p.size(); ++k) {
+      const Vec3 c = closest_point_on_polygon(g.vertices.data(), static_cast<int>(g.vertices.size()), g.normal, p.x[k]);
+      const double reach = p.radius[k] + margin + skin;
+      if ((c - p.x[k]).squaredNorm() < reach * reach)
+        wall_pairs_.push_back({p.id[k], static_cast<Index>(w), static_cast<int>(k), static_cast<int>(w), false});
+    }
+  }
+  std::sort(wall_pairs_.begin(), wall_pairs_.end());
+
+  x_build_ = p.x;
+  id_build_ = p.id;
+  wall_build_.resize(walls.size());
+  for (std::size_t w = 0; w < walls.size(); ++w) wall_build_[w] = walls[w].vertices;
+  margin_build_ = margin;
+  skin_build_ = skin;
+  valid_ = true;
+  ++builds_;
+}
+
+bool NeighbourList::update(const Particles& p, const std::vector<WallGeometry>& walls, double margin, double skin) {
+  if (!needs_rebuild(p, walls, margin, skin)) return false;
+  build(p, walls, margin, skin);
+  return true;
+}
+
+}  // namespace dem

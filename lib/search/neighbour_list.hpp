@@ -1,0 +1,42 @@
+#pragma once
+// Verlet neighbour list with a skin (DESIGN.md "Choices that decide speed"): candidate pairs closer
+// than touching + margin + skin, found with linked cells and sorted by key, rebuilt only when a
+// particle (or wall) may have moved far enough to create a contact the list does not hold. Which
+// steps rebuild never changes the contacts found, so results do not depend on it (restart-exact).
+#include <cstdint>
+#include <vector>
+
+#include "contact/contact_list.hpp"
+#include "search/linked_cells.hpp"
+#include "state/particles.hpp"
+#include "walls/wall.hpp"
+
+namespace dem {
+
+class NeighbourList {
+ public:
+  // Rebuilds if needed for the current positions; returns true when it did. `margin` is how far
+  // apart a bonded pair can still hold (0 without bonds); `skin` the extra distance listed.
+  bool update(const Particles& p, const std::vector<WallGeometry>& walls, double margin, double skin);
+  void invalidate() { valid_ = false; }
+
+  // Candidates sorted by key, with the storage slots of the last build.
+  const std::vector<FoundContact>& pairs() const { return pairs_; }
+  const std::vector<FoundContact>& wall_pairs() const { return wall_pairs_; }
+  std::int64_t builds() const { return builds_; }
+
+ private:
+  bool needs_rebuild(const Particles& p, const std::vector<WallGeometry>& walls, double margin, double skin) const;
+  void build(const Particles& p, const std::vector<WallGeometry>& walls, double margin, double skin);
+
+  LinkedCells cells_;
+  std::vector<FoundContact> pairs_, wall_pairs_;
+  std::vector<Vec3> x_build_;
+  std::vector<Index> id_build_;
+  std::vector<std::vector<Vec3>> wall_build_;
+  double margin_build_ = -1, skin_build_ = -1;
+  bool valid_ = false;
+  std::int64_t builds_ = 0;
+};
+
+}  // namespace dem
