@@ -75,18 +75,7 @@ Simulation settle_scene(int nx, int ny, int nz, double eta, bool walls) {
   const Vec3 hi(nx * s, ny * s, nz * s + 0.01);
   if (walls)
     for (int axis = 0; axis < 3; ++axis)
-      for (int side = 0; side < 2; ++side) {
-        const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-        Wall w{"w", 0, {}, {}};
-        for (auto [su, sv] : {std::pair{0, 0}, {1, 0}, {1, 1}, {0, 1}}) {
-          Vec3 p;
-          p[axis] = side ? hi[axis] : 0.0;
-          p[u] = su ? hi[u] : 0.0;
-          p[v] = sv ? hi[v] : 0.0;
-          w.base.push_back(p);
-        }
-        sim.walls.push_back(w);
-      }
+      for (bool side : {false, true}) sim.walls.push_back(Wall{"w", 0, box_face(Vec3::Zero(), hi, axis, side), {}});
   std::mt19937_64 rng(12345);
   std::uniform_real_distribution<double> vel(-0.1, 0.1);
   Index id = 0;

@@ -25,18 +25,7 @@ Simulation make_cloud() {
   const Vec3 lo(0, 0, 0), hi(L, L, 2 * L);
   // Six walls of a closed box.
   for (int axis = 0; axis < 3; ++axis)
-    for (int side = 0; side < 2; ++side) {
-      const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-      Wall w{"w", 0, {}, {}};
-      for (auto [su, sv] : {std::pair{0, 0}, {1, 0}, {1, 1}, {0, 1}}) {
-        Vec3 p;
-        p[axis] = side ? hi[axis] : lo[axis];
-        p[u] = su ? hi[u] : lo[u];
-        p[v] = sv ? hi[v] : lo[v];
-        w.base.push_back(p);
-      }
-      sim.walls.push_back(w);
-    }
+    for (bool side : {false, true}) sim.walls.push_back(Wall{"w", 0, box_face(lo, hi, axis, side), {}});
   GenerationSpec g;
   g.box_min = lo;
   g.box_max = hi;

@@ -375,18 +375,7 @@ void read_walls(TableReader& top, Scene& sc) {
         }
       }
       for (const std::string& f : faces) {
-        const int axis = f[0] - 'x';
-        const double c = f.substr(1) == "min" ? lo[axis] : hi[axis];
-        const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-        WallSpec w{name + "." + f, mat, {}};
-        for (const auto& [su, sv] : {std::pair{0, 0}, {1, 0}, {1, 1}, {0, 1}}) {
-          Vec3 p;
-          p[axis] = c;
-          p[u] = su ? hi[u] : lo[u];
-          p[v] = sv ? hi[v] : lo[v];
-          w.vertices.push_back(p);
-        }
-        add_wall(r, sc, std::move(w));
+        add_wall(r, sc, WallSpec{name + "." + f, mat, box_face(lo, hi, f[0] - 'x', f.substr(1) == "max")});
       }
     }
     r.finish();

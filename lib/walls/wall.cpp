@@ -71,6 +71,19 @@ Vec3 closest_point_on_polygon(const Vec3* v, int n, const Vec3& nrm, const Vec3&
   return best;
 }
 
+std::vector<Vec3> box_face(const Vec3& lo, const Vec3& hi, int axis, bool max_side) {
+  const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+  std::vector<Vec3> quad;
+  for (const auto& [su, sv] : {std::pair{0, 0}, {1, 0}, {1, 1}, {0, 1}}) {
+    Vec3 p;
+    p[axis] = max_side ? hi[axis] : lo[axis];
+    p[u] = su ? hi[u] : lo[u];
+    p[v] = sv ? hi[v] : lo[v];
+    quad.push_back(p);
+  }
+  return quad;
+}
+
 std::string polygon_problem(const std::vector<Vec3>& v) {
   if (v.size() != 3 && v.size() != 4) return "a wall polygon needs 3 or 4 vertices";
   const Vec3 n = (v[1] - v[0]).cross(v[2] - v[0]);

@@ -43,6 +43,10 @@ struct WallGeometry {
 // nearest point of the boundary: edge or vertex). `unit_normal` is the polygon's plane normal.
 Vec3 closest_point_on_polygon(const Vec3* verts, int n_verts, const Vec3& unit_normal, const Vec3& p);
 
+// The quad of an axis-aligned box on face `axis` (0 x, 1 y, 2 z) at its min or max side,
+// vertices in order (a convex planar polygon).
+std::vector<Vec3> box_face(const Vec3& lo, const Vec3& hi, int axis, bool max_side);
+
 // Checks that the vertices form a non-degenerate convex planar polygon; returns an empty string
 // if fine, otherwise what is wrong.
 std::string polygon_problem(const std::vector<Vec3>& verts);
