@@ -33,6 +33,7 @@ struct FoundContact {
   bool touching = true;
   bool operator<(const FoundContact& o) const { return key_i != o.key_i ? key_i < o.key_i : key_j < o.key_j; }
 };
-void update_contacts(ContactList& list, const std::vector<FoundContact>& found);
+// `scratch` is working storage kept by the caller between steps.
+void update_contacts(ContactList& list, const std::vector<FoundContact>& found, ContactList& scratch);
 
 }  // namespace dem

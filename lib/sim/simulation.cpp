@@ -73,7 +73,7 @@ void Simulation::find_contacts() {
     const double r = p.radius[f.slot_i] + p.radius[f.slot_j];
     f.touching = (p.x[f.slot_i] - p.x[f.slot_j]).squaredNorm() < r * r;
   }
-  update_contacts(pair_contacts, found_);
+  update_contacts(pair_contacts, found_, pair_scratch_);
 
   found_ = neighbours_.wall_pairs();
   const long nw = static_cast<long>(found_.size());
@@ -85,7 +85,7 @@ void Simulation::find_contacts() {
     const double a = p.radius[f.slot_i];
     f.touching = (c - p.x[f.slot_i]).squaredNorm() < a * a;
   }
-  update_contacts(wall_contacts, found_);
+  update_contacts(wall_contacts, found_, wall_scratch_);
 }
 
 void Simulation::sum_forces() {

@@ -65,6 +65,7 @@ class Simulation {
   bool has_bonds_ = false;
   NeighbourList neighbours_;
   std::vector<FoundContact> found_;
+  ContactList pair_scratch_, wall_scratch_;  // working storage of update_contacts
   std::vector<WallGeometry> wall_geometry_;
   std::vector<Vec3> force_, torque_;
   std::vector<int> csr_start_, csr_entry_;  // per-particle contact lists, fixed order
