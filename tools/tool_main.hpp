@@ -2,6 +2,7 @@
 // What every tool shares: --version, --threads, and one place that turns exceptions into messages
 // and exit codes (README "Exit codes").
 #include <CLI/CLI.hpp>
+#include <csignal>
 #include <cstdio>
 #include <functional>
 #include <omp.h>
@@ -40,6 +41,8 @@ inline int run_tool(CLI::App& app, int argc, char** argv, int& threads, const st
     return kExitUsage;
   }
   if (threads > 0) omp_set_num_threads(threads);
+  // Past a file-size limit (ulimit -f) a write should fail with an error we report, not kill us.
+  std::signal(SIGXFSZ, SIG_IGN);
   const std::string name = app.get_name();
   try {
     body();

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cerrno>
 #include <cstring>
 #include <filesystem>
 
@@ -31,10 +32,21 @@ struct Handle {
 
 class Writer {
  public:
-  explicit Writer(const std::string& path) : path_(path), file_(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose) {
+  explicit Writer(const std::string& path) : path_(path), file_(create(path), H5Fclose) {
     if (file_.id < 0) throw IoError(path + ": cannot create the checkpoint file");
   }
   hid_t file() const { return file_; }
+
+  // The file is built in memory (HDF5's core driver, no backing store) and written out by
+  // save(): a full disk or a file-size limit then fails in our own write, cleanly, instead of
+  // inside HDF5 (which crashes at exit after a failed close). HDF5 1.10 produces a consistent
+  // image only in the default file format, whose metadata has no checksums; the data is
+  // checksummed and the reader validates every shape, attribute and index.
+  static hid_t create(const std::string& path) {
+    Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
+    H5Pset_fapl_core(fapl, 1 << 20, 0);
+    return H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
+  }
 
   void group(const char* name) {
     Handle g(H5Gcreate2(file_, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose);
@@ -101,9 +113,29 @@ class Writer {
     check(H5Awrite(a, H5T_NATIVE_INT, &value), name);
   }
 
-  void close() {
-    if (H5Fclose(file_.id) < 0) throw IoError(path_ + ": writing the checkpoint failed (disk full?)");
-    file_.id = -1;
+  // Writes the in-memory file to `path_` and fsyncs it.
+  void save() {
+    if (H5Fflush(file_, H5F_SCOPE_GLOBAL) < 0) throw IoError(path_ + ": cannot finish the checkpoint image");
+    const ssize_t size = H5Fget_file_image(file_, nullptr, 0);
+    if (size <= 0) throw IoError(path_ + ": cannot finish the checkpoint image");
+    std::vector<char> image(static_cast<std::size_t>(size));
+    if (H5Fget_file_image(file_, image.data(), image.size()) != size) throw IoError(path_ + ": cannot finish the checkpoint image");
+    const int fd = ::open(path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd < 0) throw IoError(path_ + ": cannot create the file: " + std::strerror(errno));
+    std::size_t done = 0;
+    while (done < image.size()) {
+      const ssize_t n = ::write(fd, image.data() + done, image.size() - done);
+      if (n <= 0) {
+        const int err = errno;
+        ::close(fd);
+        throw IoError(path_ + ": writing the checkpoint failed after " + std::to_string(done) + " of " + std::to_string(image.size()) +
+                      " bytes: " + std::strerror(err) + " (disk full or file size limit?)");
+      }
+      done += static_cast<std::size_t>(n);
+    }
+    const bool synced = ::fsync(fd) == 0;
+    const bool closed = ::close(fd) == 0;
+    if (!synced || !closed) throw IoError(path_ + ": writing the checkpoint failed at fsync/close: " + std::strerror(errno));
   }
 
  private:
@@ -364,9 +396,8 @@ void write_checkpoint(const std::string& path, const Simulation& sim, const Chec
     {
       Writer w(tmp);
       write_all(w, sim, meta);
-      w.close();
+      w.save();
     }
-    fsync_path(tmp);
     if (std::rename(tmp.c_str(), path.c_str()) != 0) throw IoError(path + ": cannot rename the finished checkpoint into place");
     // Make the rename itself durable: fsync the directory that holds the entry.
     const std::filesystem::path dir = std::filesystem::path(path).parent_path();

@@ -18,6 +18,7 @@ Simulation simulation_from_scene(const Scene& scene) {
   sim.params.alpha_r = scene.simulation.alpha_r;
   sim.params.alpha_theta = scene.simulation.alpha_theta;
   sim.params.skin = scene.simulation.skin;
+  sim.params.max_overlap = scene.simulation.max_overlap;
   return sim;
 }
 
@@ -79,6 +80,7 @@ void adopt_scene(Simulation& sim, const Scene& scene, WallPositions positions) {
   sim.params.alpha_r = scene.simulation.alpha_r;
   sim.params.alpha_theta = scene.simulation.alpha_theta;
   sim.params.skin = scene.simulation.skin;
+  sim.params.max_overlap = scene.simulation.max_overlap;
 }
 
 double choose_time_step(const Simulation& sim, const SimulationSpec& spec) {

@@ -19,6 +19,7 @@ struct SimulationSpec {
   Vec3 gravity = Vec3(0, 0, -9.81);
   double alpha_r = 0, alpha_theta = 0;  // global damping [1/s], eq. 2.36-2.37
   double skin = 0;                      // neighbour-list skin [m]; 0 = automatic
+  double max_overlap = 0.5;             // unstable-run check: overlap / smaller radius
 };
 
 struct WallSpec {

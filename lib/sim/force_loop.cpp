@@ -8,12 +8,14 @@ namespace dem {
 namespace {
 
 // Each contact is written by one thread only; no atomics (DESIGN.md).
+// Each loop also returns the largest overlap relative to the smaller radius (a stability check).
 template <class Normal>
-void pair_forces(Simulation& sim) {
+double pair_forces(Simulation& sim) {
   const Particles& p = sim.particles;
   ContactList& pc = sim.pair_contacts;
   const long n = static_cast<long>(pc.size());
-#pragma omp parallel for schedule(static)
+  double worst = 0;
+#pragma omp parallel for schedule(static) reduction(max : worst)
   for (long k = 0; k < n; ++k) {
     const int i = pc.slot_i[k], j = pc.slot_j[k];
     const Vec3 d = p.x[j] - p.x[i];
@@ -29,15 +31,18 @@ void pair_forces(Simulation& sim) {
     pc.normal[k] = c.n;
     pc.force[k] = f.on_i;
     pc.tangential[k] = f.tangential;
+    worst = std::max(worst, c.overlap / std::min(p.radius[i], p.radius[j]));
   }
+  return worst;
 }
 
 template <class Normal>
-void wall_forces(Simulation& sim, const std::vector<WallGeometry>& geo) {
+double wall_forces(Simulation& sim, const std::vector<WallGeometry>& geo) {
   const Particles& p = sim.particles;
   ContactList& wc = sim.wall_contacts;
   const long n = static_cast<long>(wc.size());
-#pragma omp parallel for schedule(static)
+  double worst = 0;
+#pragma omp parallel for schedule(static) reduction(max : worst)
   for (long k = 0; k < n; ++k) {
     const int i = wc.slot_i[k], w = wc.slot_j[k];
     const WallGeometry& g = geo[w];
@@ -56,13 +61,14 @@ void wall_forces(Simulation& sim, const std::vector<WallGeometry>& geo) {
     wc.normal[k] = c.n;
     wc.force[k] = f.on_i;
     wc.tangential[k] = f.tangential;
+    worst = std::max(worst, c.overlap / p.radius[i]);
   }
+  return worst;
 }
 
 template <class Normal>
-void all_forces(Simulation& sim) {
-  pair_forces<Normal>(sim);
-  wall_forces<Normal>(sim, sim.wall_geometry());
+double all_forces(Simulation& sim) {
+  return std::max(pair_forces<Normal>(sim), wall_forces<Normal>(sim, sim.wall_geometry()));
 }
 
 }  // namespace
@@ -89,13 +95,14 @@ const char* variant_name(ForceVariant v) {
   return "?";
 }
 
-void compute_contact_forces(Simulation& sim, ForceVariant variant) {
+double compute_contact_forces(Simulation& sim, ForceVariant variant) {
   switch (variant) {
-    case ForceVariant::Cundall: all_forces<CundallNormal>(sim); break;
-    case ForceVariant::Liu: all_forces<LiuNormal>(sim); break;
-    case ForceVariant::Mendes: all_forces<MendesNormal>(sim); break;
-    case ForceVariant::Mixed: all_forces<MixedNormal>(sim); break;
+    case ForceVariant::Cundall: return all_forces<CundallNormal>(sim);
+    case ForceVariant::Liu: return all_forces<LiuNormal>(sim);
+    case ForceVariant::Mendes: return all_forces<MendesNormal>(sim);
+    case ForceVariant::Mixed: return all_forces<MixedNormal>(sim);
   }
+  return 0;
 }
 
 }  // namespace dem

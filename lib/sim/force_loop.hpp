@@ -14,6 +14,7 @@ ForceVariant choose_force_variant(const Simulation& sim);
 const char* variant_name(ForceVariant v);
 
 // Fills pair_contacts / wall_contacts .normal, .force, .tangential and updates their history.
-void compute_contact_forces(Simulation& sim, ForceVariant variant);
+// Returns the largest overlap relative to the smaller radius of its contact.
+double compute_contact_forces(Simulation& sim, ForceVariant variant);
 
 }  // namespace dem

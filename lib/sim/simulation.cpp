@@ -12,12 +12,36 @@ namespace dem {
 
 void Simulation::advance() {
   find_contacts();
-  compute_contact_forces(*this, choose_force_variant(*this));
+  const double worst_overlap = compute_contact_forces(*this, choose_force_variant(*this));
+  if (worst_overlap > params.max_overlap) report_overlap(worst_overlap);
   sum_forces();
   integrate();
   time += dt;
   ++step;
   if (has_bonds_) contacts_changed();  // bonds only ever break: stop paying once all are gone
+}
+
+void Simulation::report_overlap(double worst) const {
+  // Find the contact (first in key order) for the diagnosis; this runs once, on failure.
+  const Particles& p = particles;
+  std::ostringstream m;
+  m << "overlap of " << worst * 100 << " % of the radius (limit simulation.max_overlap = " << params.max_overlap * 100
+    << " %) at step " << step << " (t = " << time << " s), ";
+  for (std::size_t k = 0; k < pair_contacts.size(); ++k) {
+    const int i = pair_contacts.slot_i[k], j = pair_contacts.slot_j[k];
+    const double u = p.radius[i] + p.radius[j] - (p.x[j] - p.x[i]).norm();
+    if (u / std::min(p.radius[i], p.radius[j]) == worst) m << "between particles " << p.id[i] << " and " << p.id[j] << ", ";
+  }
+  for (std::size_t k = 0; k < wall_contacts.size(); ++k) {
+    const int i = wall_contacts.slot_i[k];
+    const WallGeometry& g = wall_geometry_[wall_contacts.slot_j[k]];
+    const Vec3 c = closest_point_on_polygon(g.vertices.data(), static_cast<int>(g.vertices.size()), g.normal, p.x[i]);
+    if ((p.radius[i] - (c - p.x[i]).norm()) / p.radius[i] == worst)
+      m << "between particle " << p.id[i] << " and wall " << walls[wall_contacts.slot_j[k]].name << ", ";
+  }
+  m << "with dt = " << dt << " s against the critical " << critical_time_step()
+    << " s of eq. 2.48: lower the time step (frac), raise the stiffness kn, or lower the load or impact speed";
+  throw PhysicsError(m.str());
 }
 
 void Simulation::refresh_contacts() { find_contacts(); }

@@ -16,6 +16,7 @@ struct SimParams {
   Vec3 gravity = Vec3(0, 0, -9.81);  // [m/s^2]
   double alpha_r = 0;                // global translational damping [1/s], eq. 2.36
   double alpha_theta = 0;            // global rotational damping [1/s], eq. 2.37
+  double max_overlap = 0.5;          // stop when an overlap exceeds this fraction of the smaller radius
   double skin = 0;                   // neighbour-list skin [m]; 0 = 0.2 x mean radius. Speed only:
                                      // the contacts found do not depend on it
 };
@@ -57,6 +58,7 @@ class Simulation {
   const std::vector<Vec3>& torques() const { return torque_; }  // resultant torque per particle [N m]
 
  private:
+  [[noreturn]] void report_overlap(double worst) const;
   void update_wall_geometry();
   void find_contacts();
   void sum_forces();
