@@ -489,6 +489,8 @@ void read_checkpoint(const std::string& path, Simulation& sim, CheckpointMeta& m
   const std::vector<int> wmat = r.int32s("/walls/material", nw), nvert = r.int32s("/walls/vertex_count", nw),
                          kind = r.int32s("/walls/motion_kind", nw);
   const std::vector<double> base = r.values<double>("/walls/base_vertices", H5T_NATIVE_DOUBLE, std::vector<long>{nw, 4, 3});
+  // Written for readers; read here too so that its checksum is verified and it must agree.
+  const std::vector<double> current = r.values<double>("/walls/vertices", H5T_NATIVE_DOUBLE, std::vector<long>{nw, 4, 3});
   const std::vector<Vec3> vel = r.vec3s("/walls/motion_velocity", nw), dir = r.vec3s("/walls/motion_direction", nw);
   const std::vector<double> freq = r.doubles("/walls/motion_frequency", nw), amp = r.doubles("/walls/motion_amplitude", nw),
                             t0 = r.doubles("/walls/motion_t0", nw);
@@ -501,6 +503,10 @@ void read_checkpoint(const std::string& path, Simulation& sim, CheckpointMeta& m
       throw IoError(path + ": wall '" + wl.name + "' has invalid data (damaged file)");
     for (int v = 0; v < nvert[k]; ++v) wl.base.emplace_back(base[12 * k + 3 * v], base[12 * k + 3 * v + 1], base[12 * k + 3 * v + 2]);
     wl.motion = {static_cast<WallMotion::Kind>(kind[k]), vel[k], dir[k], freq[k], amp[k], t0[k]};
+    const std::vector<Vec3> now = wl.vertices_at(sim.time);
+    for (int v = 0; v < nvert[k]; ++v)
+      if (now[v] != Vec3(current[12 * k + 3 * v], current[12 * k + 3 * v + 1], current[12 * k + 3 * v + 2]))
+        throw IoError(path + ": wall '" + wl.name + "': /walls/vertices disagrees with its base vertices and motion (damaged file)");
   }
 }
 
