@@ -9,6 +9,9 @@ packages=(
   python3 python3-h5py python3-numpy python3-matplotlib hdf5-tools
 )
 
+# `bootstrap.sh fuzz`: also clang and its runtime for the libFuzzer targets.
+[ "${1:-}" = fuzz ] && packages+=(clang libclang-rt-14-dev)
+
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

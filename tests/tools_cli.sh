@@ -40,6 +40,10 @@ check "text file as checkpoint" 4 "not an HDF5 file" -- "$bin/run-stage" --scene
 head -c 20000 "$tmp/a.h5" > "$tmp/cut.h5"
 check "truncated checkpoint" 4 "cut.h5" -- "$bin/post-macro" --reference "$tmp/a.h5" --in "$tmp/cut.h5" --vtk "$tmp/d.vtu"
 [ -e "$tmp/d.vtu" ] && { echo "FAIL output written after a bad checkpoint"; fail=1; }
+# Files found by fuzzing the checkpoint reader (each once crashed HDF5 or exhausted memory).
+for f in "$data"/fuzz/*.h5; do
+  check "fuzz regression $(basename "$f")" 4 "damaged" -- "$bin/post-macro" --reference "$f" --in "$f"
+done
 check "unknown stage" 3 'no \[\[stage\]\] named "drill" (defined: shake, long)' -- "$bin/run-stage" --scene "$data/small.toml" --stage drill --in "$tmp/a.h5" --out "$tmp/b.h5"
 sed 's/^frac = 0.1/frac = 0.1\ntime_step = 1.0e-3/' "$data/small.toml" > "$tmp/fast.toml"
 check "time step above critical" 3 "exceeds the critical time step" -- "$bin/run-stage" --scene "$tmp/fast.toml" --stage shake --in "$tmp/a.h5" --out "$tmp/b.h5"

@@ -152,6 +152,7 @@ class Reader {
     if (!std::filesystem::exists(path)) throw IoError(path + ": no such checkpoint file");
     if (H5Fis_hdf5(path.c_str()) <= 0)
       throw IoError(path + ": not an HDF5 file, or truncated/damaged beyond reading (expected a dem checkpoint)");
+    file_size_ = std::filesystem::file_size(path);
     file_.id = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
     if (file_.id < 0) throw IoError(path + ": cannot open the HDF5 file (truncated or damaged?)");
     const std::string format = string_attribute("format");
@@ -198,6 +199,39 @@ class Reader {
     return dims;
   }
   void read(const Handle& ds, const char* name, hid_t memtype, void* out) {
+    // HDF5 1.10 can overrun its own buffers on a damaged layout (found by fuzzing): check that the
+    // stored type is the one we write and that the chunk shape is the one we write (whole rows,
+    // first dimension at most the extent) before letting it read.
+    Handle ftype(H5Dget_type(ds), H5Tclose);
+    const bool same_type = ftype.id >= 0 && H5Tget_class(ftype) == H5Tget_class(memtype) &&
+                           H5Tget_size(ftype) == H5Tget_size(memtype) &&
+                           (H5Tget_class(memtype) != H5T_STRING || H5Tis_variable_str(ftype) == 0);
+    if (!same_type) throw IoError(path_ + ": dataset '" + name + "' has an unexpected type (damaged or foreign file)");
+    Handle space(H5Dget_space(ds), H5Sclose);
+    const int rank = H5Sget_simple_extent_ndims(space);
+    std::vector<hsize_t> dims(std::max(rank, 1)), chunk(std::max(rank, 1));
+    if (rank > 0) H5Sget_simple_extent_dims(space, dims.data(), nullptr);
+    Handle dcpl(H5Dget_create_plist(ds), H5Pclose);
+    if (H5Pget_layout(dcpl) == H5D_CHUNKED) {
+      const bool chunk_ok = rank > 0 && H5Pget_chunk(dcpl, rank, chunk.data()) == rank && chunk[0] >= 1 && chunk[0] <= dims[0] &&
+                            std::equal(chunk.begin() + 1, chunk.begin() + rank, dims.begin() + 1);
+      if (!chunk_ok) throw IoError(path_ + ": dataset '" + name + "' has a damaged chunk layout");
+      // Every stored chunk must lie inside the file and be no larger than a chunk plus its
+      // 4-byte checksum (a damaged size once made HDF5 allocate 4 GB).
+      hsize_t row = H5Tget_size(memtype);
+      for (int d = 1; d < rank; ++d) row *= dims[d];
+      const hsize_t max_bytes = chunk[0] * row + 4;
+      hsize_t nchunks = 0;
+      if (H5Dget_num_chunks(ds, space, &nchunks) < 0) throw IoError(path_ + ": dataset '" + name + "' has a damaged chunk index");
+      for (hsize_t c = 0; c < nchunks; ++c) {
+        std::vector<hsize_t> offset(rank);
+        unsigned mask = 0;
+        haddr_t addr = 0;
+        hsize_t bytes = 0;
+        if (H5Dget_chunk_info(ds, space, c, offset.data(), &mask, &addr, &bytes) < 0 || bytes > max_bytes || addr + bytes > file_size_)
+          throw IoError(path_ + ": dataset '" + name + "' has a damaged chunk index");
+      }
+    }
     if (H5Dread(ds, memtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, out) < 0)
       throw IoError(path_ + ": dataset '" + name + "' fails its checksum or cannot be read: the file is damaged");
   }
@@ -258,6 +292,7 @@ class Reader {
   }
   std::string path_;
   Handle file_;
+  hsize_t file_size_ = 0;
 };
 
 void silence_hdf5() {
