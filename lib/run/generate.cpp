@@ -67,6 +67,15 @@ Simulation load_under_scene(const std::string& path, const Scene& scene, WallPos
   return sim;
 }
 
+// The common end of gen-primary and copy-settle: time step, settle, checkpoint, report.
+void settle_and_write(const char* tool, Simulation& sim, const SettleSpec& spec, const Scene& scene, const GenerateOptions& o,
+                      Clock::time_point t0) {
+  sim.dt = choose_time_step(sim, scene.simulation);
+  const SettleResult s = settle(sim, spec, std::string(tool) + " settle", o.quiet);
+  write_checkpoint(o.out, sim, meta_for(tool, scene));
+  report(tool, sim, s, seconds_since(t0));
+}
+
 }  // namespace
 
 void gen_primary(const GenerateOptions& o) {
@@ -76,10 +85,7 @@ void gen_primary(const GenerateOptions& o) {
   Simulation sim = simulation_from_scene(scene);
   std::mt19937_64 rng(scene.generation->seed);
   fill_random(sim, *scene.generation, rng);
-  sim.dt = choose_time_step(sim, scene.simulation);
-  const SettleResult s = settle(sim, scene.generation->settle, "gen-primary settle", o.quiet);
-  write_checkpoint(o.out, sim, meta_for("gen-primary", scene));
-  report("gen-primary", sim, s, seconds_since(t0));
+  settle_and_write("gen-primary", sim, scene.generation->settle, scene, o, t0);
 }
 
 void copy_settle(const GenerateOptions& o) {
@@ -100,10 +106,7 @@ void copy_settle(const GenerateOptions& o) {
     throw InputError(m.str());
   }
   tile(sim, scene.copy->nx, scene.copy->ny, scene.copy->nz, period);
-  sim.dt = choose_time_step(sim, scene.simulation);
-  const SettleResult s = settle(sim, scene.copy->settle, "copy-settle", o.quiet);
-  write_checkpoint(o.out, sim, meta_for("copy-settle", scene));
-  report("copy-settle", sim, s, seconds_since(t0));
+  settle_and_write("copy-settle", sim, scene.copy->settle, scene, o, t0);
 }
 
 void compact(const GenerateOptions& o) {
