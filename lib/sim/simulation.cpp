@@ -128,14 +128,12 @@ void Simulation::sum_forces() {
   for (long k = 0; k < nwc; ++k) ++csr_start_[wc.slot_i[k] + 1];
   for (std::size_t k = 0; k < n; ++k) csr_start_[k + 1] += csr_start_[k];
   csr_entry_.resize(csr_start_[n]);
-  {
-    std::vector<int> fill(csr_start_.begin(), csr_start_.end() - 1);
-    for (long k = 0; k < npc; ++k) {
-      csr_entry_[fill[pc.slot_i[k]]++] = static_cast<int>(2 * k);
-      csr_entry_[fill[pc.slot_j[k]]++] = static_cast<int>(2 * k + 1);
-    }
-    for (long k = 0; k < nwc; ++k) csr_entry_[fill[wc.slot_i[k]]++] = static_cast<int>(2 * (npc + k));
+  csr_fill_.assign(csr_start_.begin(), csr_start_.end() - 1);
+  for (long k = 0; k < npc; ++k) {
+    csr_entry_[csr_fill_[pc.slot_i[k]]++] = static_cast<int>(2 * k);
+    csr_entry_[csr_fill_[pc.slot_j[k]]++] = static_cast<int>(2 * k + 1);
   }
+  for (long k = 0; k < nwc; ++k) csr_entry_[csr_fill_[wc.slot_i[k]]++] = static_cast<int>(2 * (npc + k));
 
   force_.resize(n);
   torque_.resize(n);

@@ -70,7 +70,7 @@ class Simulation {
   ContactList pair_scratch_, wall_scratch_;  // working storage of update_contacts
   std::vector<WallGeometry> wall_geometry_;
   std::vector<Vec3> force_, torque_;
-  std::vector<int> csr_start_, csr_entry_;  // per-particle contact lists, fixed order
+  std::vector<int> csr_start_, csr_entry_, csr_fill_;  // per-particle contact lists, fixed order
 };
 
 }  // namespace dem
