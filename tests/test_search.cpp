@@ -39,7 +39,7 @@ TEST_P(SearchMatchesBruteForce, PolydisperseRandomCloud) {
   p.add(5, Vec3(50, -20, 3), 0.01, 1000, 0);
   std::vector<FoundContact> fast;
   LinkedCells cells;
-  cells.find_overlaps(p, fast);
+  cells.find_near_pairs(p, fast);
   for (const FoundContact& c : fast) EXPECT_LT(c.key_i, c.key_j);
   std::sort(fast.begin(), fast.end());
   const std::vector<FoundContact> slow = brute_force(p);

@@ -24,15 +24,17 @@ struct ContactList {
   void resize(std::size_t n);
 };
 
-// Replace `list` with the contacts in `found` (sorted by key), carrying each contact's history
-// (spring, bond) from `list` when the same key was in contact before, else starting from zero.
-// A found pair that does not touch is kept only while it is bonded (a bond holds in tension).
+// A pair found by the search (particle ids or particle id and wall index), ordered by key.
 struct FoundContact {
   Index key_i, key_j;
   int slot_i, slot_j;
   bool touching = true;
   bool operator<(const FoundContact& o) const { return key_i != o.key_i ? key_i < o.key_i : key_j < o.key_j; }
 };
+
+// Replace `list` with the contacts in `found` (sorted by key), carrying each contact's history
+// (spring, bond) from `list` when the same key was in contact before, else starting from zero.
+// A found pair that does not touch is kept only while it is bonded (a bond holds in tension).
 // `scratch` is working storage kept by the caller between steps.
 void update_contacts(ContactList& list, const std::vector<FoundContact>& found, ContactList& scratch);
 

@@ -5,7 +5,7 @@
 
 namespace dem {
 
-void LinkedCells::find_overlaps(const Particles& p, std::vector<FoundContact>& out, double margin) {
+void LinkedCells::find_near_pairs(const Particles& p, std::vector<FoundContact>& out, double margin) {
   const int n = static_cast<int>(p.size());
   if (n < 2) return;
   Vec3 lo = p.x[0], hi = p.x[0];

@@ -30,7 +30,7 @@ bool NeighbourList::needs_rebuild(const Particles& p, const std::vector<WallGeom
 
 void NeighbourList::build(const Particles& p, const std::vector<WallGeometry>& walls, double margin, double skin) {
   pairs_.clear();
-  cells_.find_overlaps(p, pairs_, margin + skin);
+  cells_.find_near_pairs(p, pairs_, margin + skin);
   std::sort(pairs_.begin(), pairs_.end());
 
   wall_pairs_.clear();
