@@ -3,7 +3,7 @@
 // (> 0 in compression); the result is positive when repulsive. `bonded` is the contact's bond flag
 // Φ; a law sets `broken` when the bond fails in this step (irreversible, SPEC §6 Decision).
 //
-// How to add a law: write a struct with `kTension` and `elastic`, add its enum value in
+// How to add a law: write a struct with a static `elastic`, add its enum value in
 // state/materials.hpp, its keyword in io/scene_parser.cpp, and a case in sim/force_loop.cpp.
 #include <cmath>
 
@@ -13,14 +13,12 @@ namespace dem {
 
 // Cundall & Strack: linear in compression, no tension.
 struct CundallNormal {
-  static constexpr bool kTension = false;
   static double elastic(const PairParams& p, double u, bool /*bonded*/, bool& /*broken*/) { return u > 0 ? p.kn * u : 0.0; }
 };
 
 // Liu (eq. 2.21): linear in compression and, while bonded, in tension up to the strength F; the
 // bond breaks abruptly when the tension would exceed F.
 struct LiuNormal {
-  static constexpr bool kTension = true;
   static double elastic(const PairParams& p, double u, bool bonded, bool& broken) {
     if (u >= 0) return p.kn * u;
     if (!bonded) return 0.0;
@@ -36,7 +34,6 @@ struct LiuNormal {
 // T(s) = kn [D (1 - exp(-A s)) - s], s = -u, rising to F at s* = D ln(L) / L and softening to zero
 // at s0, where the bond breaks.
 struct MendesNormal {
-  static constexpr bool kTension = true;
   static double elastic(const PairParams& p, double u, bool bonded, bool& broken) {
     if (u >= 0) return p.kn * u;
     if (!bonded || !p.mendes_tension) return 0.0;
@@ -51,7 +48,6 @@ struct MendesNormal {
 
 // A scene whose material pairs use different laws: choose per contact.
 struct MixedNormal {
-  static constexpr bool kTension = true;
   static double elastic(const PairParams& p, double u, bool bonded, bool& broken) {
     switch (p.law) {
       case NormalLaw::Liu: return LiuNormal::elastic(p, u, bonded, broken);

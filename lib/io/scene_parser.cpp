@@ -201,11 +201,17 @@ MixRule read_mix(TableReader& r, const std::string& key, MixRule def) {
   return def;
 }
 
+// Index of the material called `name`, or -1.
+int find_material(const std::vector<Material>& mats, const std::string& name) {
+  for (std::size_t k = 0; k < mats.size(); ++k)
+    if (mats[k].name == name) return static_cast<int>(k);
+  return -1;
+}
+
 int material_ref(TableReader& r, const std::string& key, const std::vector<Material>& mats) {
   const toml::node& n = r.required(key);
   const std::string name = r.string_of(n, key);
-  for (std::size_t k = 0; k < mats.size(); ++k)
-    if (mats[k].name == name) return static_cast<int>(k);
+  if (const int k = find_material(mats, name); k >= 0) return k;
   std::string list;
   for (const Material& m : mats) list += (list.empty() ? "" : ", ") + ("\"" + m.name + "\"");
   r.fail_at(&n, key, "no material of that name (defined: " + list + ")");
@@ -258,9 +264,7 @@ void read_pairs(TableReader& top, Scene& sc) {
     int idx[2];
     for (int e = 0; e < 2; ++e) {
       const std::string name = r.string_of(*a->get(e), "materials");
-      idx[e] = -1;
-      for (std::size_t m = 0; m < sc.materials.size(); ++m)
-        if (sc.materials[m].name == name) idx[e] = static_cast<int>(m);
+      idx[e] = find_material(sc.materials, name);
       if (idx[e] < 0) r.fail_at(&mn, "materials", "no material named \"" + name + "\"");
     }
     o.a = idx[0];
@@ -309,8 +313,7 @@ void read_materials(TableReader& top, Scene& sc) {
     TableReader r(*list[k], top.file(), indexed("material", k));
     Material m;
     m.name = r.string("name");
-    for (const Material& o : sc.materials)
-      if (o.name == m.name) r.fail("name", "duplicate material name");
+    if (find_material(sc.materials, m.name) >= 0) r.fail("name", "duplicate material name");
     m.law = read_law(r, &kCundall);
     m.density = r.number("density", 0, kInf, "kg/m^3", true);
     m.kn = r.number("kn", 0, kInf, "N/m", true);
@@ -405,9 +408,7 @@ void read_generation(TableReader& top, Scene& sc) {
   double sum = 0;
   for (const auto& [k, v] : *mt) {
     const std::string name(k.str());
-    int idx = -1;
-    for (std::size_t m = 0; m < sc.materials.size(); ++m)
-      if (sc.materials[m].name == name) idx = static_cast<int>(m);
+    const int idx = find_material(sc.materials, name);
     if (idx < 0) mr.fail_at(&v, name, "no material of that name");
     const double f = mr.number(name, 0, 1, "(fraction)", true);
     sum += f;

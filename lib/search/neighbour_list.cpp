@@ -37,7 +37,7 @@ void NeighbourList::build(const Particles& p, const std::vector<WallGeometry>& w
   for (std::size_t w = 0; w < walls.size(); ++w) {
     const WallGeometry& g = walls[w];
     for (std::size_t k = 0; k < p.size(); ++k) {
-      const Vec3 c = closest_point_on_polygon(g.vertices.data(), static_cast<int>(g.vertices.size()), g.normal, p.x[k]);
+      const Vec3 c = closest_point(g, p.x[k]);
       const double reach = p.radius[k] + margin + skin;
       if ((c - p.x[k]).squaredNorm() < reach * reach)
         wall_pairs_.push_back({p.id[k], static_cast<Index>(w), static_cast<int>(k), static_cast<int>(w), false});

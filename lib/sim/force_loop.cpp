@@ -46,7 +46,7 @@ double wall_forces(Simulation& sim, const std::vector<WallGeometry>& geo) {
   for (long k = 0; k < n; ++k) {
     const int i = wc.slot_i[k], w = wc.slot_j[k];
     const WallGeometry& g = geo[w];
-    const Vec3 cp = closest_point_on_polygon(g.vertices.data(), static_cast<int>(g.vertices.size()), g.normal, p.x[i]);
+    const Vec3 cp = closest_point(g, p.x[i]);
     const Vec3 d = cp - p.x[i];
     const double dist = d.norm();
     ContactKinematics c;

@@ -22,7 +22,7 @@ void Simulation::advance() {
 }
 
 void Simulation::report_overlap(double worst) const {
-  // Find the contact (first in key order) for the diagnosis; this runs once, on failure.
+  // Name the contact(s) with that overlap (recomputed as the force loop does); runs once, on failure.
   const Particles& p = particles;
   std::ostringstream m;
   m << "overlap of " << worst * 100 << " % of the radius (limit simulation.max_overlap = " << params.max_overlap * 100
@@ -35,7 +35,7 @@ void Simulation::report_overlap(double worst) const {
   for (std::size_t k = 0; k < wall_contacts.size(); ++k) {
     const int i = wall_contacts.slot_i[k];
     const WallGeometry& g = wall_geometry_[wall_contacts.slot_j[k]];
-    const Vec3 c = closest_point_on_polygon(g.vertices.data(), static_cast<int>(g.vertices.size()), g.normal, p.x[i]);
+    const Vec3 c = closest_point(g, p.x[i]);
     if ((p.radius[i] - (c - p.x[i]).norm()) / p.radius[i] == worst)
       m << "between particle " << p.id[i] << " and wall " << walls[wall_contacts.slot_j[k]].name << ", ";
   }
@@ -43,8 +43,6 @@ void Simulation::report_overlap(double worst) const {
     << " s of eq. 2.48: lower the time step (frac), raise the stiffness kn, or lower the load or impact speed";
   throw PhysicsError(m.str());
 }
-
-void Simulation::refresh_contacts() { find_contacts(); }
 
 std::size_t Simulation::bond_present_contacts(bool walls_too) {
   find_contacts();
@@ -105,7 +103,7 @@ void Simulation::find_contacts() {
   for (long k = 0; k < nw; ++k) {
     FoundContact& f = found_[k];
     const WallGeometry& g = wall_geometry_[f.slot_j];
-    const Vec3 c = closest_point_on_polygon(g.vertices.data(), static_cast<int>(g.vertices.size()), g.normal, p.x[f.slot_i]);
+    const Vec3 c = closest_point(g, p.x[f.slot_i]);
     const double a = p.radius[f.slot_i];
     f.touching = (c - p.x[f.slot_i]).squaredNorm() < a * a;
   }

@@ -36,8 +36,6 @@ class Simulation {
   // One explicit step: contacts and forces at x^n with v^{n-1/2}, then eq. 2.38-2.47.
   void advance();
 
-  // Finds the contacts of the current positions (keeping history), without moving anything.
-  void refresh_contacts();
   // Stage action `bond`: Φ = 1 for every particle contact present now (and wall contacts if asked).
   // Returns how many contacts were bonded.
   std::size_t bond_present_contacts(bool walls_too);
@@ -54,8 +52,6 @@ class Simulation {
   double kinetic_energy() const;  // translational + rotational [J]
   std::vector<Vec3> wall_forces() const;  // force on each wall this step [N]
   const std::vector<WallGeometry>& wall_geometry() const { return wall_geometry_; }
-  const std::vector<Vec3>& forces() const { return force_; }    // resultant force per particle [N]
-  const std::vector<Vec3>& torques() const { return torque_; }  // resultant torque per particle [N m]
 
  private:
   [[noreturn]] void report_overlap(double worst) const;

@@ -71,6 +71,10 @@ Vec3 closest_point_on_polygon(const Vec3* v, int n, const Vec3& nrm, const Vec3&
   return best;
 }
 
+Vec3 closest_point(const WallGeometry& g, const Vec3& p) {
+  return closest_point_on_polygon(g.vertices.data(), static_cast<int>(g.vertices.size()), g.normal, p);
+}
+
 std::vector<Vec3> box_face(const Vec3& lo, const Vec3& hi, int axis, bool max_side) {
   const int u = (axis + 1) % 3, v = (axis + 2) % 3;
   std::vector<Vec3> quad;

@@ -39,6 +39,9 @@ struct WallGeometry {
   Vec3 velocity;  // at t^{n-1/2}, like the particles' velocities
 };
 
+// Closest point of a wall's current polygon to p (the overload below, on its geometry).
+Vec3 closest_point(const WallGeometry& g, const Vec3& p);
+
 // Closest point of a convex planar polygon to p (eq. 2.4-2.5: projection if inside, else the
 // nearest point of the boundary: edge or vertex). `unit_normal` is the polygon's plane normal.
 Vec3 closest_point_on_polygon(const Vec3* verts, int n_verts, const Vec3& unit_normal, const Vec3& p);
