@@ -6,11 +6,13 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <random>
 
 #include "core/error.hpp"
 #include "generation/fill.hpp"
 #include "io/checkpoint.hpp"
+#include "io/file_seal.hpp"
 
 namespace dem {
 namespace {
@@ -68,6 +70,16 @@ class CheckpointTest : public ::testing::Test {
     }
   }
 
+  // After editing a checkpoint with HDF5, seal it again so that the reader's own checks (not the
+  // whole-file seal) are what the test exercises.
+  static void reseal(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::vector<char> image((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    in.close();
+    seal_image(image);
+    std::ofstream(path, std::ios::binary).write(image.data(), static_cast<std::streamsize>(image.size()));
+  }
+
   fs::path dir_;
   Simulation sim_;
   CheckpointMeta meta_;
@@ -109,7 +121,7 @@ TEST_F(CheckpointTest, MissingFile) { expect_rejected((dir_ / "none.h5").string(
 TEST_F(CheckpointTest, NotHdf5) {
   const std::string p = (dir_ / "text.h5").string();
   std::ofstream(p) << "particles 1 2 3\n";
-  expect_rejected(p, "not an HDF5 file");
+  expect_rejected(p, "not a dem checkpoint");
 }
 
 TEST_F(CheckpointTest, Truncated) {
@@ -140,6 +152,8 @@ TEST_F(CheckpointTest, WrongSchemaVersion) {
   H5Awrite(a, H5T_NATIVE_INT, &v);
   H5Aclose(a);
   H5Fclose(f);
+  expect_rejected(path_, "does not match its seal");  // an edited file is refused as such
+  reseal(path_);
   expect_rejected(path_, "schema version 99");
 }
 
@@ -147,10 +161,12 @@ TEST_F(CheckpointTest, MissingDataset) {
   hid_t f = H5Fopen(path_.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
   H5Ldelete(f, "/particles/velocity", H5P_DEFAULT);
   H5Fclose(f);
+  reseal(path_);
   expect_rejected(path_, "'/particles/velocity' is missing");
 }
 
-// A flipped byte inside the position data is caught by the Fletcher32 checksum.
+// A flipped byte inside the position data is caught by the seal and, in a resealed file, by the
+// dataset's own Fletcher32 checksum.
 TEST_F(CheckpointTest, FlippedByteInData) {
   haddr_t addr = 0;
   hsize_t size = 0;
@@ -166,14 +182,17 @@ TEST_F(CheckpointTest, FlippedByteInData) {
     H5Fclose(f);
   }
   std::fstream io(path_, std::ios::in | std::ios::out | std::ios::binary);
-  io.seekg(static_cast<std::streamoff>(addr + size / 2));
+  const auto at = static_cast<std::streamoff>(kSealBytes + addr + size / 2);  // HDF5 addresses start after the seal
+  io.seekg(at);
   char c = 0;
   io.read(&c, 1);
   c ^= 0x10;
-  io.seekp(static_cast<std::streamoff>(addr + size / 2));
+  io.seekp(at);
   io.write(&c, 1);
   io.close();
-  expect_rejected(path_, "checksum");
+  expect_rejected(path_, "does not match its seal");
+  reseal(path_);
+  expect_rejected(path_, "'/particles/position' fails its checksum");
 }
 
 // A failed write leaves the previous checkpoint intact and no temporary behind.

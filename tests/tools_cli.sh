@@ -36,7 +36,7 @@ check "missing scene file" 2 "File does not exist" -- "$bin/gen-primary" --scene
 "$bin/gen-primary" --scene "$data/small.toml" --out "$tmp/a.h5" --quiet > /dev/null || { echo "FAIL gen-primary"; exit 1; }
 check "missing checkpoint" 4 "no such checkpoint" -- "$bin/run-stage" --scene "$data/small.toml" --stage shake --in "$tmp/none.h5" --out "$tmp/b.h5"
 echo "not hdf5" > "$tmp/text.h5"
-check "text file as checkpoint" 4 "not an HDF5 file" -- "$bin/run-stage" --scene "$data/small.toml" --stage shake --in "$tmp/text.h5" --out "$tmp/b.h5"
+check "text file as checkpoint" 4 "not a dem checkpoint" -- "$bin/run-stage" --scene "$data/small.toml" --stage shake --in "$tmp/text.h5" --out "$tmp/b.h5"
 head -c 20000 "$tmp/a.h5" > "$tmp/cut.h5"
 check "truncated checkpoint" 4 "cut.h5" -- "$bin/post-macro" --reference "$tmp/a.h5" --in "$tmp/cut.h5" --vtk "$tmp/d.vtu"
 [ -e "$tmp/d.vtu" ] && { echo "FAIL output written after a bad checkpoint"; fail=1; }

@@ -12,6 +12,7 @@
 
 #include "core/error.hpp"
 #include "core/version.hpp"
+#include "io/file_seal.hpp"
 
 namespace dem {
 
@@ -40,8 +41,8 @@ class Writer {
   // The file is built in memory (HDF5's core driver, no backing store) and written out by
   // save(): a full disk or a file-size limit then fails in our own write, cleanly, instead of
   // inside HDF5 (which crashes at exit after a failed close). HDF5 1.10 produces a consistent
-  // image only in the default file format, whose metadata has no checksums; the data is
-  // checksummed and the reader validates every shape, attribute and index.
+  // image only in the default file format, whose metadata has no checksums: the HDF5 user block
+  // holds our own seal of the whole file (io/file_seal.hpp), and each dataset its Fletcher32.
   static hid_t create(const std::string& path) {
     Handle fapl(H5Pcreate(H5P_FILE_ACCESS), H5Pclose);
     H5Pset_fapl_core(fapl, 1 << 20, 0);
@@ -118,8 +119,12 @@ class Writer {
     if (H5Fflush(file_, H5F_SCOPE_GLOBAL) < 0) throw IoError(path_ + ": cannot finish the checkpoint image");
     const ssize_t size = H5Fget_file_image(file_, nullptr, 0);
     if (size <= 0) throw IoError(path_ + ": cannot finish the checkpoint image");
-    std::vector<char> image(static_cast<std::size_t>(size));
-    if (H5Fget_file_image(file_, image.data(), image.size()) != size) throw IoError(path_ + ": cannot finish the checkpoint image");
+    // The seal goes in front: HDF5 finds the superblock at 512 and treats what precedes it as a
+    // user block (h5py and h5dump too).
+    std::vector<char> image(kSealBytes + static_cast<std::size_t>(size));
+    if (H5Fget_file_image(file_, image.data() + kSealBytes, image.size() - kSealBytes) != size)
+      throw IoError(path_ + ": cannot finish the checkpoint image");
+    seal_image(image);
     const int fd = ::open(path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     if (fd < 0) throw IoError(path_ + ": cannot create the file: " + std::strerror(errno));
     std::size_t done = 0;
@@ -150,6 +155,7 @@ class Reader {
  public:
   explicit Reader(const std::string& path) : path_(path), file_(-1, H5Fclose) {
     if (!std::filesystem::exists(path)) throw IoError(path + ": no such checkpoint file");
+    check_seal(path);  // before HDF5 follows any of the file's metadata
     if (H5Fis_hdf5(path.c_str()) <= 0)
       throw IoError(path + ": not an HDF5 file, or truncated/damaged beyond reading (expected a dem checkpoint)");
     file_size_ = std::filesystem::file_size(path);
@@ -196,6 +202,13 @@ class Reader {
     bool ok = rank == static_cast<int>(expect.size());
     for (std::size_t k = 0; ok && k < expect.size(); ++k) ok = expect[k] < 0 || dims[k] == static_cast<hsize_t>(expect[k]);
     if (!ok) throw IoError(path_ + ": dataset '" + name + "' has an unexpected shape (damaged or foreign file)");
+    // We store every element (no compression, no unwritten chunks), so a dataset can never hold more
+    // bytes than the file; a damaged extent once asked for terabytes (found by fuzzing).
+    Handle ftype(H5Dget_type(ds), H5Tclose);
+    long double bytes = ftype.id >= 0 ? static_cast<long double>(H5Tget_size(ftype)) : 0.0L;
+    for (hsize_t d : dims) bytes *= static_cast<long double>(d);
+    if (ftype.id < 0 || bytes > static_cast<long double>(file_size_))
+      throw IoError(path_ + ": dataset '" + name + "' claims more data than the file holds (damaged or foreign file)");
     return dims;
   }
   void read(const Handle& ds, const char* name, hid_t memtype, void* out) {
