@@ -53,7 +53,7 @@ void collision_errors(double frac, double eta, double& e_err, double& t_err) {
   bool touched = false;
   for (int s = 0; s < 10000000; ++s) {
     sim.advance();
-    const bool c = sim.pair_contacts.size() > 0;
+    const bool c = sim.pair_contacts().size() > 0;
     steps += c;
     touched = touched || c;
     if (touched && !c) break;
@@ -158,7 +158,7 @@ void variants() {
       const auto t0 = std::chrono::steady_clock::now();
       for (int k = 0; k < steps; ++k) sim.advance();
       ns[t] = 1e9 * seconds_since(t0) / (steps * sim.particles.size());
-      contacts = sim.pair_contacts.size() + sim.wall_contacts.size();
+      contacts = sim.pair_contacts().size() + sim.wall_contacts().size();
     }
     if (reference == 0) reference = ns[0];
     std::printf("| %s | %s | %zu | %.0f | %.0f | %.2f |\n", c.name, variant, contacts, ns[0], ns[1], ns[0] / reference);

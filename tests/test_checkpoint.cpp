@@ -48,7 +48,7 @@ class CheckpointTest : public ::testing::Test {
     std::uniform_real_distribution<double> u(-0.5, 0.5);
     for (Vec3& v : sim_.particles.v) v = Vec3(u(rng), u(rng), u(rng) - 0.5);
     sim_.dt = 0.1 * sim_.critical_time_step();
-    for (int s = 0; s < 50000 && (s < 3000 || sim_.pair_contacts.size() == 0 || sim_.wall_contacts.size() == 0); ++s) sim_.advance();
+    for (int s = 0; s < 50000 && (s < 3000 || sim_.pair_contacts().size() == 0 || sim_.wall_contacts().size() == 0); ++s) sim_.advance();
     meta_.writer = "test";
     meta_.scene_text = "# scene text\n";
     meta_.scene_path = "x.toml";
@@ -87,8 +87,8 @@ class CheckpointTest : public ::testing::Test {
 };
 
 TEST_F(CheckpointTest, RoundTripIsExact) {
-  ASSERT_GT(sim_.pair_contacts.size(), 0u);
-  ASSERT_GT(sim_.wall_contacts.size(), 0u);
+  ASSERT_GT(sim_.pair_contacts().size(), 0u);
+  ASSERT_GT(sim_.wall_contacts().size(), 0u);
   Simulation s;
   CheckpointMeta m;
   read_checkpoint(path_, s, m);
@@ -98,9 +98,9 @@ TEST_F(CheckpointTest, RoundTripIsExact) {
   EXPECT_EQ(s.particles.w, sim_.particles.w);
   EXPECT_EQ(s.particles.radius, sim_.particles.radius);
   EXPECT_EQ(s.particles.mass, sim_.particles.mass);
-  EXPECT_EQ(s.pair_contacts.key_i, sim_.pair_contacts.key_i);
-  EXPECT_EQ(s.pair_contacts.spring, sim_.pair_contacts.spring);
-  EXPECT_EQ(s.wall_contacts.key_j, sim_.wall_contacts.key_j);
+  EXPECT_EQ(s.pair_contacts().key_i, sim_.pair_contacts().key_i);
+  EXPECT_EQ(s.pair_contacts().spring, sim_.pair_contacts().spring);
+  EXPECT_EQ(s.wall_contacts().key_j, sim_.wall_contacts().key_j);
   EXPECT_EQ(s.time, sim_.time);
   EXPECT_EQ(s.step, sim_.step);
   EXPECT_EQ(s.dt, sim_.dt);

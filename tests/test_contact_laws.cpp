@@ -246,9 +246,9 @@ void place_on_axis(Simulation& sim, double s, double rate) {
 
 // Attraction of the (single) pair contact this step, 0 if there is none.
 double pair_tension(const Simulation& sim) {
-  return sim.pair_contacts.size() ? sim.pair_contacts.force[0].dot(sim.pair_contacts.normal[0]) : 0.0;
+  return sim.pair_contacts().size() ? sim.pair_contacts().force[0].dot(sim.pair_contacts().normal[0]) : 0.0;
 }
-bool pair_bonded(const Simulation& sim) { return sim.pair_contacts.size() && sim.pair_contacts.bonded[0]; }
+bool pair_bonded(const Simulation& sim) { return sim.pair_contacts().size() && sim.pair_contacts().bonded[0]; }
 
 struct PullResult {
   double max_tension = 0;
@@ -291,7 +291,7 @@ double push_back_and_pull(Simulation& sim, double rate, double s_from) {
   for (double s = s_from; s > -u0; s -= ds) {
     place_on_axis(sim, s, -rate);
     sim.advance();
-    touched = touched || sim.pair_contacts.size() > 0;
+    touched = touched || sim.pair_contacts().size() > 0;
     max_tension = std::max(max_tension, pair_tension(sim));
     EXPECT_FALSE(pair_bonded(sim)) << "a contact made after the break is never bonded";
   }
@@ -300,7 +300,7 @@ double push_back_and_pull(Simulation& sim, double rate, double s_from) {
     place_on_axis(sim, s, rate);
     sim.advance();
     max_tension = std::max(max_tension, pair_tension(sim));
-    if (s > 0) EXPECT_EQ(sim.pair_contacts.size(), 0u) << "an unbonded pair apart is no contact, s = " << s;
+    if (s > 0) EXPECT_EQ(sim.pair_contacts().size(), 0u) << "an unbonded pair apart is no contact, s = " << s;
   }
   return max_tension;
 }
@@ -377,11 +377,11 @@ TEST(LiuBond, UnbondedContactCarriesNoTension) {
     place_on_axis(sim, s, kPullRate);
     sim.particles.v[2] = sim.particles.v[3] = Vec3::Zero();
     sim.advance();
-    for (std::size_t k = 0; k < sim.pair_contacts.size(); ++k)
-      if (sim.pair_contacts.key_i[k] == 0) {
+    for (std::size_t k = 0; k < sim.pair_contacts().size(); ++k)
+      if (sim.pair_contacts().key_i[k] == 0) {
         ++steps_in_contact;
-        EXPECT_EQ(sim.pair_contacts.bonded[k], 0);
-        max_tension = std::max(max_tension, sim.pair_contacts.force[k].dot(sim.pair_contacts.normal[k]));
+        EXPECT_EQ(sim.pair_contacts().bonded[k], 0);
+        max_tension = std::max(max_tension, sim.pair_contacts().force[k].dot(sim.pair_contacts().normal[k]));
       }
   }
   EXPECT_GT(steps_in_contact, 0);
@@ -440,12 +440,12 @@ TEST_P(Cohesion, ShearResistanceIsCohesionPlusFriction) {
     const double theta = omega * k * sim.dt;
     place(theta, omega);
     sim.advance();
-    ASSERT_EQ(sim.pair_contacts.size(), 1u);
+    ASSERT_EQ(sim.pair_contacts().size(), 1u);
     const Vec3 n(std::sin(theta), 0, std::cos(theta));
     const Vec3 e_theta(std::cos(theta), 0, -std::sin(theta));
-    const Vec3 ft = sim.pair_contacts.tangential[0];  // on sphere 0 (key_i)
+    const Vec3 ft = sim.pair_contacts().tangential[0];  // on sphere 0 (key_i)
     // Normal force unchanged by the shearing (relative 1e-9: u0 from positions has ~1e-14 error).
-    ASSERT_NEAR(-sim.pair_contacts.force[0].dot(n), fn, 1e-9 * std::abs(fn) + 1e-12);
+    ASSERT_NEAR(-sim.pair_contacts().force[0].dot(n), fn, 1e-9 * std::abs(fn) + 1e-12);
     // The force on the held sphere drags it along the motion of sphere 1 (SPEC §6 signs).
     if (ft.norm() > 0) EXPECT_GT(ft.dot(e_theta), 0.999999 * ft.norm());
     const double delta = (k + 1) * step_delta;  // increments so far: one per step, k_t dt v_t
@@ -558,7 +558,7 @@ TEST(Conservation, MomentumAndAngularMomentumInACollidingCloud) {
   for (int step = 0; step < 20000; ++step) {
     x_before = sim.particles.x;
     sim.advance();
-    const ContactList& pc = sim.pair_contacts;
+    const ContactList& pc = sim.pair_contacts();
     for (std::size_t k = 0; k < pc.size(); ++k) {
       const int i = pc.slot_i[k], j = pc.slot_j[k];
       const double u = sim.particles.radius[i] + sim.particles.radius[j] - (x_before[j] - x_before[i]).norm();
@@ -609,7 +609,7 @@ TEST(Conservation, ElasticFrictionlessCloudKeepsEnergy) {
   for (int step = 0; step < 100000; ++step) {
     v_before = sim.particles.v;
     sim.advance();
-    const ContactList& pc = sim.pair_contacts;
+    const ContactList& pc = sim.pair_contacts();
     std::map<std::pair<Index, Index>, bool> now;
     for (std::size_t k = 0; k < pc.size(); ++k) {
       const auto key = std::make_pair(pc.key_i[k], pc.key_j[k]);
@@ -633,7 +633,7 @@ TEST(Conservation, ElasticFrictionlessCloudKeepsEnergy) {
   }
   EXPECT_GT(events, 50);
   EXPECT_GT(free_samples, 1000);
-  EXPECT_EQ(sim.pair_contacts.size(), 0u) << "all collisions over by the end";
+  EXPECT_EQ(sim.pair_contacts().size(), 0u) << "all collisions over by the end";
   std::printf("  elastic cloud: %d contact events, bound sum = %.2e KE0, max |KE-KE0|/KE0 = %.2e, max |dKE|/bound = %.3f\n",
               events, bound / ke0, worst_rel, worst_ratio);
 }
@@ -652,7 +652,7 @@ TEST(Conservation, DampedFrictionalCloudNeverGainsEnergy) {
   int free_samples = 0;
   for (int step = 0; step < 20000; ++step) {
     sim.advance();
-    if (sim.pair_contacts.size() == 0) {
+    if (sim.pair_contacts().size() == 0) {
       ++free_samples;
       const double ke = sim.kinetic_energy();
       ASSERT_LE(ke, last_free * (1 + 1e-12)) << "step " << step;
@@ -732,7 +732,7 @@ TEST_P(Stability, BondedClusterHitByImpactor) {
   const std::vector<Vec3> x0 = sim.particles.x;
   sim.dt = 0.1 * sim.critical_time_step();
   double worst = 0;
-  const std::size_t bonds_before = sim.pair_contacts.size();
+  const std::size_t bonds_before = sim.pair_contacts().size();
   ASSERT_NO_THROW({
     for (int step = 0; step < 30000; ++step) {
       sim.advance();
@@ -745,7 +745,7 @@ TEST_P(Stability, BondedClusterHitByImpactor) {
     }
   });
   std::size_t bonded_now = 0;
-  for (std::uint8_t b : sim.pair_contacts.bonded) bonded_now += b;
+  for (std::uint8_t b : sim.pair_contacts().bonded) bonded_now += b;
   EXPECT_LT(bonded_now, bonds_before) << "the impact broke bonds";
   std::printf("  stability %s: max KE / available = %.4f, pair bonds %zu -> %zu\n", sc.name, worst, bonds_before, bonded_now);
 }

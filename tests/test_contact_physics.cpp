@@ -52,7 +52,7 @@ Impact collide(double eta, bool against_wall) {
   bool touched = false;
   for (int s = 0; s < 200000; ++s) {
     sim.advance();
-    const bool in_contact = sim.pair_contacts.size() + sim.wall_contacts.size() > 0;
+    const bool in_contact = sim.pair_contacts().size() + sim.wall_contacts().size() > 0;
     contact_steps += in_contact;
     touched = touched || in_contact;
     if (touched && !in_contact) break;
@@ -254,8 +254,8 @@ Rebound oblique(double angle_deg, double mu) {
   bool touched = false;
   for (int s = 0; s < 1000000; ++s) {
     sim.advance();
-    touched = touched || sim.wall_contacts.size() > 0;
-    if (touched && sim.wall_contacts.size() == 0) break;
+    touched = touched || sim.wall_contacts().size() > 0;
+    if (touched && sim.wall_contacts().size() == 0) break;
   }
   // For the floor below, rolling forward means w_y > 0: contact point speed u = v_x - a w_y.
   return {sim.particles.v[0].x(), sim.particles.w[0].y() * a};

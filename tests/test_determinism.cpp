@@ -52,11 +52,11 @@ TEST(Determinism, OneAndTwoThreadsGiveTheSameBits) {
   for (int s = 0; s < 1500; ++s) a.advance();
   omp_set_num_threads(2);
   for (int s = 0; s < 1500; ++s) b.advance();
-  ASSERT_GT(a.pair_contacts.size(), 0u) << "the test must exercise contacts";
+  ASSERT_GT(a.pair_contacts().size(), 0u) << "the test must exercise contacts";
   EXPECT_TRUE(same_bits(a.particles.x, b.particles.x));
   EXPECT_TRUE(same_bits(a.particles.v, b.particles.v));
   EXPECT_TRUE(same_bits(a.particles.w, b.particles.w));
-  EXPECT_TRUE(same_bits(a.pair_contacts.spring, b.pair_contacts.spring));
+  EXPECT_TRUE(same_bits(a.pair_contacts().spring, b.pair_contacts().spring));
 }
 
 }  // namespace

@@ -91,15 +91,15 @@ TEST(NeighbourList, ContactsEqualBruteForceEveryStep) {
       }
     std::sort(walls.begin(), walls.end());
     sim.advance();
-    ASSERT_EQ(sim.pair_contacts.size(), pairs.size()) << "step " << s;
+    ASSERT_EQ(sim.pair_contacts().size(), pairs.size()) << "step " << s;
     for (std::size_t k = 0; k < pairs.size(); ++k) {
-      ASSERT_EQ(sim.pair_contacts.key_i[k], pairs[k].key_i);
-      ASSERT_EQ(sim.pair_contacts.key_j[k], pairs[k].key_j);
+      ASSERT_EQ(sim.pair_contacts().key_i[k], pairs[k].key_i);
+      ASSERT_EQ(sim.pair_contacts().key_j[k], pairs[k].key_j);
     }
-    ASSERT_EQ(sim.wall_contacts.size(), walls.size()) << "step " << s;
+    ASSERT_EQ(sim.wall_contacts().size(), walls.size()) << "step " << s;
     for (std::size_t k = 0; k < walls.size(); ++k) {
-      ASSERT_EQ(sim.wall_contacts.key_i[k], walls[k].first);
-      ASSERT_EQ(sim.wall_contacts.key_j[k], walls[k].second);
+      ASSERT_EQ(sim.wall_contacts().key_i[k], walls[k].first);
+      ASSERT_EQ(sim.wall_contacts().key_j[k], walls[k].second);
     }
     pair_contacts += pairs.size();
     wall_contacts += walls.size();

@@ -45,11 +45,11 @@ TEST(WallContact, EdgeAndVertexForceAlongTheLineToTheCentre) {
     sim.particles.add(0, centre, a, 2500, 0);
     sim.dt = 1e-9;
     sim.advance();
-    ASSERT_EQ(sim.wall_contacts.size(), 1u);
+    ASSERT_EQ(sim.wall_contacts().size(), 1u);
     const Vec3 cp = closest(centre);
     const Vec3 d = centre - cp;
     const Vec3 want = 1e4 * (a - d.norm()) * d.normalized();
-    EXPECT_TRUE(sim.wall_contacts.force[0].isApprox(want, 1e-12)) << sim.wall_contacts.force[0].transpose() << " vs " << want.transpose();
+    EXPECT_TRUE(sim.wall_contacts().force[0].isApprox(want, 1e-12)) << sim.wall_contacts().force[0].transpose() << " vs " << want.transpose();
   }
 }
 

@@ -1,48 +1,59 @@
 #include "contact/contact_list.hpp"
 
-namespace dem {
+#include <utility>
 
-void ContactList::clear() { resize(0); }
+namespace dem {
 
 void ContactList::resize(std::size_t n) {
   key_i.resize(n);
   key_j.resize(n);
-  slot_i.resize(n);
-  slot_j.resize(n);
+  slot_i.resize(n, -1);
+  slot_j.resize(n, -1);
   spring.resize(n, Vec3::Zero());
   bonded.resize(n, 0);
+  active.resize(n, 0);
   normal.resize(n, Vec3::Zero());
   force.resize(n, Vec3::Zero());
   tangential.resize(n, Vec3::Zero());
 }
 
-void update_contacts(ContactList& list, const std::vector<FoundContact>& found, ContactList& next) {
-  // Merge-join of two key-sorted sequences, O(old + new), written into `next`, which then becomes
-  // the list; both keep their capacity, so a run does not allocate here once warmed up.
-  next.key_i.clear();
-  next.key_j.clear();
-  next.slot_i.clear();
-  next.slot_j.clear();
-  next.spring.clear();
-  next.bonded.clear();
+void ContactList::push_back_from(const ContactList& from, std::size_t k) {
+  key_i.push_back(from.key_i[k]);
+  key_j.push_back(from.key_j[k]);
+  slot_i.push_back(from.slot_i[k]);
+  slot_j.push_back(from.slot_j[k]);
+  spring.push_back(from.spring[k]);
+  bonded.push_back(from.bonded[k]);
+  active.push_back(from.active[k]);
+  normal.push_back(from.normal[k]);
+  force.push_back(from.force[k]);
+  tangential.push_back(from.tangential[k]);
+}
+
+void carry_history(ContactList& list, const std::vector<FoundContact>& found, ContactList& next) {
+  // Merge-join of two key-sorted sequences, O(old + new); both lists keep their capacity, so a
+  // run does not allocate here once warmed up.
+  next.resize(found.size());
   std::size_t o = 0;
-  for (const FoundContact& f : found) {
+  for (std::size_t k = 0; k < found.size(); ++k) {
+    const FoundContact& f = found[k];
     while (o < list.size() && (list.key_i[o] < f.key_i || (list.key_i[o] == f.key_i && list.key_j[o] < f.key_j))) ++o;
     const bool before = o < list.size() && list.key_i[o] == f.key_i && list.key_j[o] == f.key_j;
-    const std::uint8_t b = before ? list.bonded[o] : 0;
-    if (!f.touching && !b) continue;
-    next.key_i.push_back(f.key_i);
-    next.key_j.push_back(f.key_j);
-    next.slot_i.push_back(f.slot_i);
-    next.slot_j.push_back(f.slot_j);
-    next.spring.push_back(before ? list.spring[o] : Vec3::Zero());
-    next.bonded.push_back(b);
+    next.key_i[k] = f.key_i;
+    next.key_j[k] = f.key_j;
+    next.slot_i[k] = f.slot_i;
+    next.slot_j[k] = f.slot_j;
+    next.spring[k] = before ? list.spring[o] : Vec3::Zero();
+    next.bonded[k] = before ? list.bonded[o] : 0;
+    next.active[k] = 0;  // decided by the force loop
   }
-  const std::size_t n = next.key_i.size();
-  next.normal.resize(n);
-  next.force.resize(n);
-  next.tangential.resize(n);
   std::swap(list, next);
+}
+
+void active_contacts(const ContactList& list, ContactList& out) {
+  out.clear();
+  for (std::size_t k = 0; k < list.size(); ++k)
+    if (list.active[k]) out.push_back_from(list, k);
 }
 
 }  // namespace dem

@@ -1,6 +1,10 @@
 #pragma once
-// Contacts of one step as structure-of-arrays, with their history (the tangential spring) keyed by
+// Contacts as structure-of-arrays, with their history (the tangential spring and the bond) keyed by
 // stable ids so that it survives neighbour rebuilds, re-sorting and restarts (DESIGN.md).
+//
+// During a run the list holds every candidate pair of the neighbour list; `active` marks those
+// that touch (or hold by a bond) this step. History lives on the candidates, so nothing is merged,
+// copied or compacted per step: only a rebuild of the neighbour list carries it over, by key.
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -12,30 +16,34 @@ namespace dem {
 struct ContactList {
   // Keys: particle ids (key_i < key_j) for particle pairs; (particle id, wall index) for walls.
   std::vector<Index> key_i, key_j;
-  std::vector<int> slot_i, slot_j;  // storage slots this step (slot_j = wall index for walls)
+  std::vector<int> slot_i, slot_j;  // storage slots (slot_j = wall index for walls); -1 until found
   std::vector<Vec3> spring;         // tangential spring force on i [N] (history)
   std::vector<std::uint8_t> bonded; // bond flag Φ (history), SPEC §6
+  std::vector<std::uint8_t> active; // touching or bonded this step: a contact, not just a candidate
   std::vector<Vec3> normal;         // unit normal from i to j (or to the wall) this step
   std::vector<Vec3> force;          // force on i this step [N]
   std::vector<Vec3> tangential;     // tangential part of force on i [N]
 
   std::size_t size() const { return key_i.size(); }
-  void clear();
+  void clear() { resize(0); }
   void resize(std::size_t n);
+  // Appends entry k of `from` (all fields).
+  void push_back_from(const ContactList& from, std::size_t k);
 };
 
 // A pair found by the search (particle ids or particle id and wall index), ordered by key.
 struct FoundContact {
   Index key_i, key_j;
   int slot_i, slot_j;
-  bool touching = true;
   bool operator<(const FoundContact& o) const { return key_i != o.key_i ? key_i < o.key_i : key_j < o.key_j; }
 };
 
-// Replace `list` with the contacts in `found` (sorted by key), carrying each contact's history
-// (spring, bond) from `list` when the same key was in contact before, else starting from zero.
-// A found pair that does not touch is kept only while it is bonded (a bond holds in tension).
-// `scratch` is working storage kept by the caller between steps.
-void update_contacts(ContactList& list, const std::vector<FoundContact>& found, ContactList& scratch);
+// Makes `list` hold exactly the candidates in `found` (sorted by key), each carrying its history
+// (spring, bond) from the entry of `list` with the same key when there is one, else zero history.
+// `list` must be sorted by key too. `scratch` is working storage kept by the caller.
+void carry_history(ContactList& list, const std::vector<FoundContact>& found, ContactList& scratch);
+
+// The active entries of `list`, in order.
+void active_contacts(const ContactList& list, ContactList& out);
 
 }  // namespace dem

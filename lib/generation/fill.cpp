@@ -80,8 +80,7 @@ void tile(Simulation& sim, int nx, int ny, int nz, const Vec3& period) {
           p.material.push_back(src.material[s]);
         }
       }
-  sim.pair_contacts.clear();
-  sim.wall_contacts.clear();
+  sim.set_contacts({}, {});
 }
 
 std::pair<Vec3, Vec3> sphere_bounds(const Particles& p) {

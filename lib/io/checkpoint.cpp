@@ -397,8 +397,8 @@ void write_all(Writer& w, const Simulation& sim, const CheckpointMeta& meta) {
     w.uint8s(("/contacts/" + kind + "_bonded").c_str(), c.bonded);
   };
   w.group("/contacts");
-  contacts("pair", sim.pair_contacts);
-  contacts("wall", sim.wall_contacts);
+  contacts("pair", sim.pair_contacts());
+  contacts("wall", sim.wall_contacts());
 
   w.group("/walls");
   const std::size_t nw = sim.walls.size();
@@ -523,14 +523,17 @@ void read_checkpoint(const std::string& path, Simulation& sim, CheckpointMeta& m
     for (long i = 0; i < nc; ++i) {
       c.key_i[i] = k[2 * i];
       c.key_j[i] = k[2 * i + 1];
-      c.slot_i[i] = c.slot_j[i] = -1;  // found again from positions at the next step
       c.spring[i] = s[i];
       c.bonded[i] = b[i];
+      // History is carried over by a merge of key-sorted lists, as the writer stores them.
+      if (i > 0 && !(c.key_i[i - 1] < c.key_i[i] || (c.key_i[i - 1] == c.key_i[i] && c.key_j[i - 1] < c.key_j[i])))
+        throw IoError(path + ": /contacts/" + kind + "_ids is not sorted by id (damaged or foreign file)");
     }
   };
-  contacts("pair", sim.pair_contacts);
-  contacts("wall", sim.wall_contacts);
-  sim.contacts_changed();
+  ContactList pairs, walls;
+  contacts("pair", pairs);
+  contacts("wall", walls);
+  sim.set_contacts(std::move(pairs), std::move(walls));
 
   const std::vector<std::string> wnames = r.strings("/walls/name");
   const long nw = static_cast<long>(wnames.size());

@@ -51,30 +51,20 @@ void adopt_scene(Simulation& sim, const Scene& scene, WallPositions positions) {
   sim.walls = std::move(walls);
 
   // Wall contact history follows the walls; contacts with walls that are gone are dropped.
-  ContactList& wc = sim.wall_contacts;
-  std::vector<FoundContact> kept;
-  std::vector<Vec3> springs;
-  std::vector<std::uint8_t> bonds;
-  for (std::size_t k = 0; k < wc.size(); ++k) {
-    const Index w = wc.key_j[k];
-    if (w >= 0 && w < static_cast<Index>(wall_remap.size()) && wall_remap[w] >= 0) {
-      kept.push_back({wc.key_i[k], wall_remap[w], -1, -1});
-      springs.push_back(wc.spring[k]);
-      bonds.push_back(wc.bonded[k]);
-    }
+  const ContactList& old = sim.wall_contacts();
+  std::vector<std::size_t> order;
+  for (std::size_t k = 0; k < old.size(); ++k) {
+    const Index w = old.key_j[k];
+    if (w >= 0 && w < static_cast<Index>(wall_remap.size()) && wall_remap[w] >= 0) order.push_back(k);
   }
-  std::vector<std::size_t> order(kept.size());
-  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return kept[a] < kept[b]; });
-  wc.resize(kept.size());
-  for (std::size_t k = 0; k < order.size(); ++k) {
-    wc.key_i[k] = kept[order[k]].key_i;
-    wc.key_j[k] = kept[order[k]].key_j;
-    wc.slot_i[k] = wc.slot_j[k] = -1;
-    wc.spring[k] = springs[order[k]];
-    wc.bonded[k] = bonds[order[k]];
+  auto new_key = [&](std::size_t k) { return std::make_pair(old.key_i[k], static_cast<Index>(wall_remap[old.key_j[k]])); };
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return new_key(a) < new_key(b); });
+  ContactList wc;
+  for (std::size_t k : order) {
+    wc.push_back_from(old, k);
+    wc.key_j.back() = new_key(k).second;
   }
-  sim.contacts_changed();
+  sim.set_contacts(sim.pair_contacts(), std::move(wc));
 
   sim.params.gravity = scene.simulation.gravity;
   sim.params.alpha_r = scene.simulation.alpha_r;

@@ -49,9 +49,8 @@ void LinkedCells::find_near_pairs(const Particles& p, std::vector<FoundContact>&
     const double r = p.radius[a] + p.radius[b];
     const double d2 = (p.x[a] - p.x[b]).squaredNorm();
     if (d2 < (r + margin) * (r + margin)) {
-      const bool touching = d2 < r * r;
-      if (p.id[a] < p.id[b]) out.push_back({p.id[a], p.id[b], a, b, touching});
-      else out.push_back({p.id[b], p.id[a], b, a, touching});
+      if (p.id[a] < p.id[b]) out.push_back({p.id[a], p.id[b], a, b});
+      else out.push_back({p.id[b], p.id[a], b, a});
     }
   };
   for (long cz = 0; cz < dims[2]; ++cz)

@@ -13,8 +13,8 @@ namespace dem {
 class LinkedCells {
  public:
   // Appends every pair closer than touching plus `margin` (|x_i - x_j| < a_i + a_j + margin) to
-  // `out`, keyed by ids (key_i < key_j), flagged `touching` when they overlap, in a deterministic
-  // order (not sorted). A margin lets bonded pairs be found while apart (in tension).
+  // `out`, keyed by ids (key_i < key_j), in a deterministic order (not sorted). A margin lets
+  // bonded pairs be found while apart (in tension).
   void find_near_pairs(const Particles& p, std::vector<FoundContact>& out, double margin = 0);
 
  private:

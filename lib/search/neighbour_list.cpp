@@ -40,7 +40,7 @@ void NeighbourList::build(const Particles& p, const std::vector<WallGeometry>& w
       const Vec3 c = closest_point(g, p.x[k]);
       const double reach = p.radius[k] + margin + skin;
       if ((c - p.x[k]).squaredNorm() < reach * reach)
-        wall_pairs_.push_back({p.id[k], static_cast<Index>(w), static_cast<int>(k), static_cast<int>(w), false});
+        wall_pairs_.push_back({p.id[k], static_cast<Index>(w), static_cast<int>(k), static_cast<int>(w)});
     }
   }
   std::sort(wall_pairs_.begin(), wall_pairs_.end());

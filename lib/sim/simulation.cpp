@@ -12,13 +12,39 @@ namespace dem {
 
 void Simulation::advance() {
   find_contacts();
-  const double worst_overlap = compute_contact_forces(*this, choose_force_variant(*this));
+  const ForceLoopInput in{particles, materials, walls, wall_geometry_, dt};
+  const double worst_overlap = compute_contact_forces(in, choose_force_variant(*this), pairs_, walls_);
+  views_current_ = false;
   if (worst_overlap > params.max_overlap) report_overlap(worst_overlap);
   sum_forces();
   integrate();
   time += dt;
   ++step;
-  if (has_bonds_) contacts_changed();  // bonds only ever break: stop paying once all are gone
+  if (has_bonds_) count_bonds();  // bonds only ever break: stop paying once all are gone
+}
+
+const ContactList& Simulation::pair_contacts() const {
+  if (!views_current_) active_contacts(pairs_, pair_view_), active_contacts(walls_, wall_view_), views_current_ = true;
+  return pair_view_;
+}
+
+const ContactList& Simulation::wall_contacts() const {
+  pair_contacts();
+  return wall_view_;
+}
+
+void Simulation::set_contacts(ContactList pairs, ContactList walls) {
+  pairs_ = std::move(pairs);
+  walls_ = std::move(walls);
+  for (ContactList* c : {&pairs_, &walls_}) {
+    c->resize(c->size());  // fields a caller left empty
+    std::fill(c->active.begin(), c->active.end(), 1);
+    std::fill(c->slot_i.begin(), c->slot_i.end(), -1);
+    std::fill(c->slot_j.begin(), c->slot_j.end(), -1);
+  }
+  neighbours_ = NeighbourList();  // the next step finds the candidates and carries this history over
+  views_current_ = false;
+  count_bonds();
 }
 
 void Simulation::report_overlap(double worst) const {
@@ -27,17 +53,18 @@ void Simulation::report_overlap(double worst) const {
   std::ostringstream m;
   m << "overlap of " << worst * 100 << " % of the radius (limit simulation.max_overlap = " << params.max_overlap * 100
     << " %) at step " << step << " (t = " << time << " s), ";
-  for (std::size_t k = 0; k < pair_contacts.size(); ++k) {
-    const int i = pair_contacts.slot_i[k], j = pair_contacts.slot_j[k];
+  for (std::size_t k = 0; k < pairs_.size(); ++k) {
+    const int i = pairs_.slot_i[k], j = pairs_.slot_j[k];
     const double u = p.radius[i] + p.radius[j] - (p.x[j] - p.x[i]).norm();
-    if (u / std::min(p.radius[i], p.radius[j]) == worst) m << "between particles " << p.id[i] << " and " << p.id[j] << ", ";
+    if (pairs_.active[k] && u / std::min(p.radius[i], p.radius[j]) == worst)
+      m << "between particles " << p.id[i] << " and " << p.id[j] << ", ";
   }
-  for (std::size_t k = 0; k < wall_contacts.size(); ++k) {
-    const int i = wall_contacts.slot_i[k];
-    const WallGeometry& g = wall_geometry_[wall_contacts.slot_j[k]];
+  for (std::size_t k = 0; k < walls_.size(); ++k) {
+    const int i = walls_.slot_i[k];
+    const WallGeometry& g = wall_geometry_[walls_.slot_j[k]];
     const Vec3 c = closest_point(g, p.x[i]);
-    if ((p.radius[i] - (c - p.x[i]).norm()) / p.radius[i] == worst)
-      m << "between particle " << p.id[i] << " and wall " << walls[wall_contacts.slot_j[k]].name << ", ";
+    if (walls_.active[k] && (p.radius[i] - (c - p.x[i]).norm()) / p.radius[i] == worst)
+      m << "between particle " << p.id[i] << " and wall " << walls[walls_.slot_j[k]].name << ", ";
   }
   m << "with dt = " << dt << " s against the critical " << critical_time_step()
     << " s of eq. 2.48: lower the time step (frac), raise the stiffness kn, or lower the load or impact speed";
@@ -46,18 +73,29 @@ void Simulation::report_overlap(double worst) const {
 
 std::size_t Simulation::bond_present_contacts(bool walls_too) {
   find_contacts();
+  // The pairs touching now (the test of the force loop) and the contacts holding already.
+  const Particles& p = particles;
   std::size_t n = 0;
-  for (std::size_t k = 0; k < pair_contacts.size(); ++k) pair_contacts.bonded[k] = 1, ++n;
+  for (std::size_t k = 0; k < pairs_.size(); ++k) {
+    const int i = pairs_.slot_i[k], j = pairs_.slot_j[k];
+    const double r = p.radius[i] + p.radius[j];
+    if ((p.x[j] - p.x[i]).squaredNorm() < r * r || pairs_.bonded[k]) pairs_.bonded[k] = pairs_.active[k] = 1, ++n;
+  }
   if (walls_too)
-    for (std::size_t k = 0; k < wall_contacts.size(); ++k) wall_contacts.bonded[k] = 1, ++n;
-  contacts_changed();
+    for (std::size_t k = 0; k < walls_.size(); ++k) {
+      const int i = walls_.slot_i[k];
+      const Vec3 c = closest_point(wall_geometry_[walls_.slot_j[k]], p.x[i]);
+      if ((c - p.x[i]).squaredNorm() < p.radius[i] * p.radius[i] || walls_.bonded[k]) walls_.bonded[k] = walls_.active[k] = 1, ++n;
+    }
+  views_current_ = false;
+  count_bonds();
   return n;
 }
 
-void Simulation::contacts_changed() {
+void Simulation::count_bonds() {
   has_bonds_ = false;
-  for (std::uint8_t b : pair_contacts.bonded) has_bonds_ = has_bonds_ || b;
-  for (std::uint8_t b : wall_contacts.bonded) has_bonds_ = has_bonds_ || b;
+  for (std::uint8_t b : pairs_.bonded) has_bonds_ = has_bonds_ || b;
+  for (std::uint8_t b : walls_.bonded) has_bonds_ = has_bonds_ || b;
 }
 
 void Simulation::update_wall_geometry() {
@@ -82,57 +120,39 @@ void Simulation::find_contacts() {
   // Bonded pairs hold in tension until they break: list that much further while bonds exist.
   const double margin = has_bonds_ ? 1.01 * materials.max_break_separation() : 0.0;
   update_wall_geometry();
-  neighbours_.update(particles, wall_geometry_, margin, skin());
+  if (!neighbours_.update(particles, wall_geometry_, margin, skin())) return;
+  // New candidates: carry the history over by key; which pairs touch is decided by the force loop.
+  carry_history(pairs_, neighbours_.pairs(), scratch_);
+  carry_history(walls_, neighbours_.wall_pairs(), scratch_);
+  index_contacts_per_particle();
+}
 
-  // The contacts of this step: the listed candidates that touch now (bonded ones also while apart),
-  // already in key order, so no sort is needed between rebuilds.
-  const Particles& p = particles;
-  found_ = neighbours_.pairs();
-  const long np = static_cast<long>(found_.size());
-#pragma omp parallel for schedule(static)
-  for (long k = 0; k < np; ++k) {
-    FoundContact& f = found_[k];
-    const double r = p.radius[f.slot_i] + p.radius[f.slot_j];
-    f.touching = (p.x[f.slot_i] - p.x[f.slot_j]).squaredNorm() < r * r;
+void Simulation::index_contacts_per_particle() {
+  // Per-particle lists of candidate entries in a fixed order (pairs by key, then walls), so that
+  // the sums of sum_forces give the same bits for any thread count. Entry codes: 2k = pair k seen
+  // from i, 2k+1 = seen from j, 2(npc+k) = wall candidate k.
+  const std::size_t n = particles.size();
+  const long npc = static_cast<long>(pairs_.size());
+  const long nwc = static_cast<long>(walls_.size());
+  csr_start_.assign(n + 1, 0);
+  for (long k = 0; k < npc; ++k) ++csr_start_[pairs_.slot_i[k] + 1], ++csr_start_[pairs_.slot_j[k] + 1];
+  for (long k = 0; k < nwc; ++k) ++csr_start_[walls_.slot_i[k] + 1];
+  for (std::size_t k = 0; k < n; ++k) csr_start_[k + 1] += csr_start_[k];
+  csr_entry_.resize(csr_start_[n]);
+  csr_fill_.assign(csr_start_.begin(), csr_start_.end() - 1);
+  for (long k = 0; k < npc; ++k) {
+    csr_entry_[csr_fill_[pairs_.slot_i[k]]++] = static_cast<int>(2 * k);
+    csr_entry_[csr_fill_[pairs_.slot_j[k]]++] = static_cast<int>(2 * k + 1);
   }
-  update_contacts(pair_contacts, found_, pair_scratch_);
-
-  found_ = neighbours_.wall_pairs();
-  const long nw = static_cast<long>(found_.size());
-#pragma omp parallel for schedule(static)
-  for (long k = 0; k < nw; ++k) {
-    FoundContact& f = found_[k];
-    const WallGeometry& g = wall_geometry_[f.slot_j];
-    const Vec3 c = closest_point(g, p.x[f.slot_i]);
-    const double a = p.radius[f.slot_i];
-    f.touching = (c - p.x[f.slot_i]).squaredNorm() < a * a;
-  }
-  update_contacts(wall_contacts, found_, wall_scratch_);
+  for (long k = 0; k < nwc; ++k) csr_entry_[csr_fill_[walls_.slot_i[k]]++] = static_cast<int>(2 * (npc + k));
 }
 
 void Simulation::sum_forces() {
   const Particles& p = particles;
   const std::size_t n = p.size();
-  const ContactList& pc = pair_contacts;
-  const ContactList& wc = wall_contacts;
+  const ContactList& pc = pairs_;
+  const ContactList& wc = walls_;
   const long npc = static_cast<long>(pc.size());
-  const long nwc = static_cast<long>(wc.size());
-
-  // Per-particle lists of contact entries in a fixed order (pairs by key, then walls), so that the
-  // sums below give the same bits for any thread count. Entry codes: 2k = pair contact k seen from
-  // i, 2k+1 = seen from j, 2(npc+k) = wall contact k.
-  csr_start_.assign(n + 1, 0);
-  for (long k = 0; k < npc; ++k) ++csr_start_[pc.slot_i[k] + 1], ++csr_start_[pc.slot_j[k] + 1];
-  for (long k = 0; k < nwc; ++k) ++csr_start_[wc.slot_i[k] + 1];
-  for (std::size_t k = 0; k < n; ++k) csr_start_[k + 1] += csr_start_[k];
-  csr_entry_.resize(csr_start_[n]);
-  csr_fill_.assign(csr_start_.begin(), csr_start_.end() - 1);
-  for (long k = 0; k < npc; ++k) {
-    csr_entry_[csr_fill_[pc.slot_i[k]]++] = static_cast<int>(2 * k);
-    csr_entry_[csr_fill_[pc.slot_j[k]]++] = static_cast<int>(2 * k + 1);
-  }
-  for (long k = 0; k < nwc; ++k) csr_entry_[csr_fill_[wc.slot_i[k]]++] = static_cast<int>(2 * (npc + k));
-
   force_.resize(n);
   torque_.resize(n);
   const Vec3 g = params.gravity;
@@ -145,9 +165,11 @@ void Simulation::sum_forces() {
       const long k = code / 2;
       // Torques, eq. 2.33-2.34: M = a n x f_t for i and j alike (M_j = (a_j / a_i) M_i).
       if (k < npc) {
+        if (!pc.active[k]) continue;
         f += (code % 2 == 0) ? pc.force[k] : Vec3(-pc.force[k]);  // eq. 2.31-2.32
         t += p.radius[i] * pc.normal[k].cross(pc.tangential[k]);
       } else {
+        if (!wc.active[k - npc]) continue;
         f += wc.force[k - npc];
         t += p.radius[i] * wc.normal[k - npc].cross(wc.tangential[k - npc]);
       }
@@ -198,7 +220,8 @@ double Simulation::kinetic_energy() const {
 std::vector<Vec3> Simulation::wall_forces() const {
   std::vector<Vec3> f(walls.size(), Vec3::Zero());
   // key_j (the wall index) is valid even before the first step after a restart, when slots are not.
-  for (std::size_t k = 0; k < wall_contacts.size(); ++k) f[wall_contacts.key_j[k]] -= wall_contacts.force[k];
+  const ContactList& wc = wall_contacts();
+  for (std::size_t k = 0; k < wc.size(); ++k) f[wc.key_j[k]] -= wc.force[k];
   return f;
 }
 

@@ -27,8 +27,6 @@ class Simulation {
   MaterialTable materials;
   std::vector<Wall> walls;
   SimParams params;
-  ContactList pair_contacts;  // particle-particle
-  ContactList wall_contacts;  // particle-wall (key_j = wall index)
   double time = 0;            // [s]
   double dt = 0;              // [s]
   std::int64_t step = 0;
@@ -36,12 +34,19 @@ class Simulation {
   // One explicit step: contacts and forces at x^n with v^{n-1/2}, then eq. 2.38-2.47.
   void advance();
 
+  // The contacts (touching, or holding by a bond) of the last step, sorted by key: particle-particle
+  // and particle-wall (key_j = wall index). Compacted from the candidate lists on demand (not in
+  // the time loop); after set_contacts, the lists given.
+  const ContactList& pair_contacts() const;
+  const ContactList& wall_contacts() const;
+  // Replaces the contact history (checkpoint read, a new scene, new particles): lists sorted by
+  // key, slots found again at the next step.
+  void set_contacts(ContactList pairs, ContactList walls);
+
   // Stage action `bond`: Φ = 1 for every particle contact present now (and wall contacts if asked).
   // Returns how many contacts were bonded.
   std::size_t bond_present_contacts(bool walls_too);
   bool has_bonds() const { return has_bonds_; }
-  // Call after replacing contact lists (checkpoint read): recounts bonds.
-  void contacts_changed();
 
   // Critical time step of eq. 2.48 (without FRAC): 2 sqrt(M_min / (2 K_max)).
   double critical_time_step() const;
@@ -57,16 +62,22 @@ class Simulation {
   [[noreturn]] void report_overlap(double worst) const;
   void update_wall_geometry();
   void find_contacts();
+  void count_bonds();
+  void index_contacts_per_particle();
   void sum_forces();
   void integrate();
 
   bool has_bonds_ = false;
   NeighbourList neighbours_;
-  std::vector<FoundContact> found_;
-  ContactList pair_scratch_, wall_scratch_;  // working storage of update_contacts
+  // Every candidate pair of the neighbour list, with its history; `active` = a contact this step.
+  ContactList pairs_, walls_;
+  ContactList scratch_;  // working storage of carry_history
+  mutable ContactList pair_view_, wall_view_;  // pair_contacts(), wall_contacts()
+  mutable bool views_current_ = false;
   std::vector<WallGeometry> wall_geometry_;
   std::vector<Vec3> force_, torque_;
-  std::vector<int> csr_start_, csr_entry_, csr_fill_;  // per-particle contact lists, fixed order
+  // Per-particle lists of candidate entries in a fixed order, rebuilt with the neighbour list.
+  std::vector<int> csr_start_, csr_entry_, csr_fill_;
 };
 
 }  // namespace dem

@@ -1,0 +1,67 @@
+// The settle benchmark for our code (bench/run_peer_bench.sh runs it beside LAMMPS and LIGGGHTS):
+//   settle_bench run N STEPS THREADS      runs the scene of bench/settle_scene.hpp for STEPS steps and
+//                                         prints one line: N, steps, threads, loop seconds,
+//                                         particle-steps per second, contacts, kinetic energies,
+//                                         peak resident memory
+//   settle_bench lammps-data N FILE       writes the same initial state as a LAMMPS data file
+// The loop time covers the steps only (scene construction excluded), as LAMMPS's "Loop time".
+#include <omp.h>
+#include <sys/resource.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <exception>
+
+#include "settle_scene.hpp"
+
+using namespace dem;
+
+namespace {
+
+long peak_rss_kb() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_maxrss;
+}
+
+double rotational_energy(const Simulation& sim) {
+  double e = 0;
+  for (std::size_t i = 0; i < sim.particles.size(); ++i) e += 0.5 * sim.particles.inertia(i) * sim.particles.w[i].squaredNorm();
+  return e;
+}
+
+int run(long n, long steps, int threads) {
+  omp_set_num_threads(threads);
+  const long rss_before = peak_rss_kb();
+  Simulation sim = bench::settle_scene(bench::settle_size(n));
+  const auto t0 = std::chrono::steady_clock::now();
+  for (long s = 0; s < steps; ++s) sim.advance();
+  const double loop = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const long rss = peak_rss_kb();
+  std::printf("particles %zu steps %ld threads %d loop_s %.4f psps %.4g contacts %zu ke %.10g rke %.10g rss_kb %ld rss_increase_kb %ld\n",
+              sim.particles.size(), steps, threads, loop, sim.particles.size() * static_cast<double>(steps) / loop,
+              sim.pair_contacts().size() + sim.wall_contacts().size(), sim.kinetic_energy() - rotational_energy(sim),
+              rotational_energy(sim), rss, rss - rss_before);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    if (argc == 5 && std::strcmp(argv[1], "run") == 0) return run(std::atol(argv[2]), std::atol(argv[3]), std::atoi(argv[4]));
+    if (argc == 4 && std::strcmp(argv[1], "lammps-data") == 0) {
+      const long n = std::atol(argv[2]);
+      const bench::LatticeSize size = bench::settle_size(n);
+      bench::write_lammps_data(bench::settle_scene(size), size, argv[3]);
+      return 0;
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "settle_bench: %s\n", e.what());
+    return 1;
+  }
+  std::fprintf(stderr, "usage: settle_bench run N STEPS THREADS | settle_bench lammps-data N FILE\n");
+  return 2;
+}
