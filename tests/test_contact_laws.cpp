@@ -246,7 +246,7 @@ void place_on_axis(Simulation& sim, double s, double rate) {
 
 // Attraction of the (single) pair contact this step, 0 if there is none.
 double pair_tension(const Simulation& sim) {
-  return sim.pair_contacts().size() ? sim.pair_contacts().force[0].dot(sim.pair_contacts().normal[0]) : 0.0;
+  return sim.pair_contacts().size() ? sim.pair_contacts().force(0).dot(sim.pair_contacts().normal[0]) : 0.0;
 }
 bool pair_bonded(const Simulation& sim) { return sim.pair_contacts().size() && sim.pair_contacts().bonded[0]; }
 
@@ -381,7 +381,7 @@ TEST(LiuBond, UnbondedContactCarriesNoTension) {
       if (sim.pair_contacts().key_i[k] == 0) {
         ++steps_in_contact;
         EXPECT_EQ(sim.pair_contacts().bonded[k], 0);
-        max_tension = std::max(max_tension, sim.pair_contacts().force[k].dot(sim.pair_contacts().normal[k]));
+        max_tension = std::max(max_tension, sim.pair_contacts().force(k).dot(sim.pair_contacts().normal[k]));
       }
   }
   EXPECT_GT(steps_in_contact, 0);
@@ -443,9 +443,9 @@ TEST_P(Cohesion, ShearResistanceIsCohesionPlusFriction) {
     ASSERT_EQ(sim.pair_contacts().size(), 1u);
     const Vec3 n(std::sin(theta), 0, std::cos(theta));
     const Vec3 e_theta(std::cos(theta), 0, -std::sin(theta));
-    const Vec3 ft = sim.pair_contacts().tangential[0];  // on sphere 0 (key_i)
+    const Vec3 ft = sim.pair_contacts().tangential(0);  // on sphere 0 (key_i)
     // Normal force unchanged by the shearing (relative 1e-9: u0 from positions has ~1e-14 error).
-    ASSERT_NEAR(-sim.pair_contacts().force[0].dot(n), fn, 1e-9 * std::abs(fn) + 1e-12);
+    ASSERT_NEAR(-sim.pair_contacts().force(0).dot(n), fn, 1e-9 * std::abs(fn) + 1e-12);
     // The force on the held sphere drags it along the motion of sphere 1 (SPEC §6 signs).
     if (ft.norm() > 0) EXPECT_GT(ft.dot(e_theta), 0.999999 * ft.norm());
     const double delta = (k + 1) * step_delta;  // increments so far: one per step, k_t dt v_t
@@ -562,8 +562,8 @@ TEST(Conservation, MomentumAndAngularMomentumInACollidingCloud) {
     for (std::size_t k = 0; k < pc.size(); ++k) {
       const int i = pc.slot_i[k], j = pc.slot_j[k];
       const double u = sim.particles.radius[i] + sim.particles.radius[j] - (x_before[j] - x_before[i]).norm();
-      couple += sim.dt * u * pc.normal[k].cross(pc.tangential[k]);
-      couple_abs += sim.dt * std::abs(u) * pc.tangential[k].norm();
+      couple += sim.dt * u * pc.normal[k].cross(pc.tangential(k));
+      couple_abs += sim.dt * std::abs(u) * pc.tangential(k).norm();
     }
     contact_steps += pc.size();
     j_scale = std::max(j_scale, angular_scale(sim.particles));

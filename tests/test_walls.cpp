@@ -49,7 +49,7 @@ TEST(WallContact, EdgeAndVertexForceAlongTheLineToTheCentre) {
     const Vec3 cp = closest(centre);
     const Vec3 d = centre - cp;
     const Vec3 want = 1e4 * (a - d.norm()) * d.normalized();
-    EXPECT_TRUE(sim.wall_contacts().force[0].isApprox(want, 1e-12)) << sim.wall_contacts().force[0].transpose() << " vs " << want.transpose();
+    EXPECT_TRUE(sim.wall_contacts().force(0).isApprox(want, 1e-12)) << sim.wall_contacts().force(0).transpose() << " vs " << want.transpose();
   }
 }
 

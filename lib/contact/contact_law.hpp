@@ -31,7 +31,7 @@ struct ContactLaw {
   // `spring` is the stored tangential spring force on i (a global vector, SPEC §5 Decision),
   // rotated into the current tangent plane and updated in place; `bonded` is Φ, cleared when the
   // bond breaks.
-  static ContactForce evaluate(const PairParams& p, const ContactKinematics& c, double dt, Vec3& spring, std::uint8_t& bonded) {
+  [[gnu::always_inline]] static ContactForce evaluate(const PairParams& p, const ContactKinematics& c, double dt, Vec3& spring, std::uint8_t& bonded) {
     const Vec3& n = c.n;
     const double vn = c.v_rel.dot(n);  // > 0 when separating
     bool broken = false;
@@ -39,7 +39,8 @@ struct ContactLaw {
     if (broken) bonded = 0;
     // f_n = f_el + c_n du_n/dt with du_n/dt = -vn, eq. 2.27-2.28; not clipped (SPEC §6 Decision)
     // unless the pair asks for no_viscous_attraction (unbonded contacts only).
-    const double cn = 2.0 * p.gamma_n * std::sqrt(c.m_eff * p.kn);
+    const double sqrt_m = std::sqrt(c.m_eff);
+    const double cn = p.damping_n * sqrt_m;  // 2 gamma_n sqrt(m* kn)
     double fn = f_el - cn * vn;
     if (!bonded && c.overlap <= 0) fn = 0;  // a pair apart whose bond just broke: no force
     if (p.no_viscous_attraction && !bonded) fn = std::max(fn, 0.0);
@@ -59,16 +60,17 @@ struct ContactLaw {
     // Coulomb otherwise (SPEC §6 Decision). Tension is already capped at F by the normal law.
     const double tau = bonded ? std::max(0.0, p.cohesion + p.mu * fn) : p.mu * std::max(fn, 0.0);
     Vec3 ft;
-    const double trial_norm = trial.norm();
-    if (trial_norm <= tau) {
+    const double trial2 = trial.squaredNorm();
+    if (trial2 <= tau * tau) {
       // The contact point's tangential motion has the effective mass 2/7 m* (solid spheres that
       // also spin: 1/m_t = 7/2 (1/m_i + 1/m_j)), so eq. 2.28 with m* would over-damp it by
       // sqrt(7/2) and make near-critical eta_t unstable in the explicit scheme.
-      const double ct = 2.0 * p.gamma_t * std::sqrt(2.0 / 7.0 * c.m_eff * p.kt);
+      const double ct = p.damping_t * sqrt_m;  // 2 gamma_t sqrt(2/7 m* kt)
       spring = trial;
       ft = trial + ct * vt;  // sticking, damped
     } else {
       // Sliding: radial return onto the failure surface (eq. 2.26); the spring keeps tau.
+      const double trial_norm = std::sqrt(trial2);
       spring = trial_norm > 0 ? Vec3(trial * (tau / trial_norm)) : Vec3::Zero();
       ft = spring;
     }

@@ -13,8 +13,7 @@ void ContactList::resize(std::size_t n) {
   bonded.resize(n, 0);
   active.resize(n, 0);
   normal.resize(n, Vec3::Zero());
-  force.resize(n, Vec3::Zero());
-  tangential.resize(n, Vec3::Zero());
+  sum.resize(n);
 }
 
 void ContactList::push_back_from(const ContactList& from, std::size_t k) {
@@ -26,8 +25,7 @@ void ContactList::push_back_from(const ContactList& from, std::size_t k) {
   bonded.push_back(from.bonded[k]);
   active.push_back(from.active[k]);
   normal.push_back(from.normal[k]);
-  force.push_back(from.force[k]);
-  tangential.push_back(from.tangential[k]);
+  sum.push_back(from.sum[k]);
 }
 
 void carry_history(ContactList& list, const std::vector<FoundContact>& found, ContactList& next) {
@@ -46,6 +44,7 @@ void carry_history(ContactList& list, const std::vector<FoundContact>& found, Co
     next.spring[k] = before ? list.spring[o] : Vec3::Zero();
     next.bonded[k] = before ? list.bonded[o] : 0;
     next.active[k] = 0;  // decided by the force loop
+    next.sum[k] = ContactSum();
   }
   std::swap(list, next);
 }

@@ -13,6 +13,13 @@
 
 namespace dem {
 
+// What the per-particle sums read of one contact, together in memory: the force on i and its
+// moment arm term n x f_t (eq. 2.33-2.34: the torque on i is a_i n x f_t, on j a_j n x f_t).
+struct ContactSum {
+  Vec3 force = Vec3::Zero();   // total force on i [N]; j receives the opposite (eq. 2.31-2.32)
+  Vec3 moment = Vec3::Zero();  // n x f_t [N]
+};
+
 struct ContactList {
   // Keys: particle ids (key_i < key_j) for particle pairs; (particle id, wall index) for walls.
   std::vector<Index> key_i, key_j;
@@ -21,10 +28,12 @@ struct ContactList {
   std::vector<std::uint8_t> bonded; // bond flag Φ (history), SPEC §6
   std::vector<std::uint8_t> active; // touching or bonded this step: a contact, not just a candidate
   std::vector<Vec3> normal;         // unit normal from i to j (or to the wall) this step
-  std::vector<Vec3> force;          // force on i this step [N]
-  std::vector<Vec3> tangential;     // tangential part of force on i [N]
+  std::vector<ContactSum> sum;      // force on i and n x f_t this step; zero for a mere candidate
 
   std::size_t size() const { return key_i.size(); }
+  const Vec3& force(std::size_t k) const { return sum[k].force; }  // on i [N]
+  // The tangential part f_t of force(k): (n x f_t) x n, since f_t lies in the tangent plane.
+  Vec3 tangential(std::size_t k) const { return sum[k].moment.cross(normal[k]); }
   void clear() { resize(0); }
   void resize(std::size_t n);
   // Appends entry k of `from` (all fields).

@@ -34,14 +34,17 @@ void NeighbourList::build(const Particles& p, const std::vector<WallGeometry>& w
   std::sort(pairs_.begin(), pairs_.end());
 
   wall_pairs_.clear();
+  const long n = static_cast<long>(p.size());
+  near_wall_.resize(n);
   for (std::size_t w = 0; w < walls.size(); ++w) {
     const WallGeometry& g = walls[w];
-    for (std::size_t k = 0; k < p.size(); ++k) {
-      const Vec3 c = closest_point(g, p.x[k]);
+#pragma omp parallel for schedule(static)
+    for (long k = 0; k < n; ++k) {
       const double reach = p.radius[k] + margin + skin;
-      if ((c - p.x[k]).squaredNorm() < reach * reach)
-        wall_pairs_.push_back({p.id[k], static_cast<Index>(w), static_cast<int>(k), static_cast<int>(w)});
+      near_wall_[k] = (closest_point(g, p.x[k]) - p.x[k]).squaredNorm() < reach * reach;
     }
+    for (long k = 0; k < n; ++k)
+      if (near_wall_[k]) wall_pairs_.push_back({p.id[k], static_cast<Index>(w), static_cast<int>(k), static_cast<int>(w)});
   }
   std::sort(wall_pairs_.begin(), wall_pairs_.end());
 

@@ -30,6 +30,7 @@ class NeighbourList {
 
   LinkedCells cells_;
   std::vector<FoundContact> pairs_, wall_pairs_;
+  std::vector<std::uint8_t> near_wall_;  // working storage of build()
   std::vector<Vec3> x_build_;
   std::vector<Index> id_build_;
   std::vector<std::vector<Vec3>> wall_build_;

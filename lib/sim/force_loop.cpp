@@ -1,5 +1,6 @@
 #include "sim/force_loop.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "contact/contact_law.hpp"
@@ -9,38 +10,50 @@ namespace dem {
 
 namespace {
 
-// Each contact is written by one thread only; no atomics (DESIGN.md).
-// Each loop also returns the largest overlap relative to the smaller radius (a stability check).
+// Each contact is written by one thread only; no atomics (DESIGN.md). The candidates go in chunks
+// dealt to the threads in turn, which balances them when the contacts crowd in one part of the
+// list (a pile under free fall). Each loop also returns the largest overlap relative to the
+// smaller radius (a stability check).
+constexpr long kChunk = 256;
+
 template <class Normal>
 double pair_forces(const ForceLoopInput& in, ContactList& pc) {
   const Particles& p = in.particles;
   const long n = static_cast<long>(pc.size());
   double worst = 0;
-#pragma omp parallel for schedule(static) reduction(max : worst)
-  for (long k = 0; k < n; ++k) {
-    const int i = pc.slot_i[k], j = pc.slot_j[k];
-    const Vec3 d = p.x[j] - p.x[i];
-    const double r = p.radius[i] + p.radius[j];
-    const double d2 = d.squaredNorm();
-    if (d2 >= r * r && !pc.bonded[k]) {  // a candidate, not a contact: no force, no history
-      pc.active[k] = 0;
-      pc.spring[k] = Vec3::Zero();
-      continue;
+#pragma omp parallel for schedule(static, 1) reduction(max : worst)
+  for (long first = 0; first < n; first += kChunk) {
+    const long last = std::min(n, first + kChunk);
+    // Pass 1: which candidates are contacts (touching, or held by a bond). The others get no force
+    // and lose their history. Pass 2 then runs the law without an unpredictable branch.
+    int contact[kChunk];
+    int m = 0;
+    for (long k = first; k < last; ++k) {
+      const int i = pc.slot_i[k], j = pc.slot_j[k];
+      const double r = p.radius[i] + p.radius[j];
+      const bool touching = (p.x[j] - p.x[i]).squaredNorm() < r * r;
+      pc.active[k] = touching || pc.bonded[k];
+      contact[m] = static_cast<int>(k);
+      m += pc.active[k];
+      if (!pc.active[k]) pc.spring[k] = Vec3::Zero(), pc.sum[k] = ContactSum();
     }
-    const double dist = std::sqrt(d2);
-    ContactKinematics c;
-    c.n = d / dist;
-    c.overlap = r - dist;  // eq. 2.11
-    c.v_rel = p.v[j] - p.v[i];
-    c.w_arm = p.radius[j] * p.w[j] + p.radius[i] * p.w[i];
-    c.m_eff = p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j]);
-    const ContactForce f =
-        ContactLaw<Normal>::evaluate(in.materials.pair(p.material[i], p.material[j]), c, in.dt, pc.spring[k], pc.bonded[k]);
-    pc.active[k] = 1;
-    pc.normal[k] = c.n;
-    pc.force[k] = f.on_i;
-    pc.tangential[k] = f.tangential;
-    worst = std::max(worst, c.overlap / std::min(p.radius[i], p.radius[j]));
+    for (int e = 0; e < m; ++e) {
+      const long k = contact[e];
+      const int i = pc.slot_i[k], j = pc.slot_j[k];
+      const Vec3 d = p.x[j] - p.x[i];
+      const double dist = d.norm();
+      ContactKinematics c;
+      c.n = d * (1.0 / dist);
+      c.overlap = p.radius[i] + p.radius[j] - dist;  // eq. 2.11
+      c.v_rel = p.v[j] - p.v[i];
+      c.w_arm = p.radius[j] * p.w[j] + p.radius[i] * p.w[i];
+      c.m_eff = p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j]);
+      const ContactForce f =
+          ContactLaw<Normal>::evaluate(in.materials.pair(p.material[i], p.material[j]), c, in.dt, pc.spring[k], pc.bonded[k]);
+      pc.normal[k] = c.n;
+      pc.sum[k] = {f.on_i, c.n.cross(f.tangential)};
+      worst = std::max(worst, c.overlap / std::min(p.radius[i], p.radius[j]));
+    }
   }
   return worst;
 }
@@ -50,7 +63,7 @@ double wall_forces(const ForceLoopInput& in, ContactList& wc) {
   const Particles& p = in.particles;
   const long n = static_cast<long>(wc.size());
   double worst = 0;
-#pragma omp parallel for schedule(static) reduction(max : worst)
+#pragma omp parallel for schedule(static, kChunk) reduction(max : worst)
   for (long k = 0; k < n; ++k) {
     const int i = wc.slot_i[k], w = wc.slot_j[k];
     const WallGeometry& g = in.geometry[w];
@@ -60,6 +73,7 @@ double wall_forces(const ForceLoopInput& in, ContactList& wc) {
     if (d2 >= p.radius[i] * p.radius[i] && !wc.bonded[k]) {
       wc.active[k] = 0;
       wc.spring[k] = Vec3::Zero();
+      wc.sum[k] = ContactSum();
       continue;
     }
     const double dist = std::sqrt(d2);
@@ -74,8 +88,7 @@ double wall_forces(const ForceLoopInput& in, ContactList& wc) {
         ContactLaw<Normal>::evaluate(in.materials.pair(p.material[i], in.walls[w].material), c, in.dt, wc.spring[k], wc.bonded[k]);
     wc.active[k] = 1;
     wc.normal[k] = c.n;
-    wc.force[k] = f.on_i;
-    wc.tangential[k] = f.tangential;
+    wc.sum[k] = {f.on_i, c.n.cross(f.tangential)};
     worst = std::max(worst, c.overlap / p.radius[i]);
   }
   return worst;

@@ -155,8 +155,11 @@ void Simulation::sum_forces() {
   const long npc = static_cast<long>(pc.size());
   force_.resize(n);
   torque_.resize(n);
-  const Vec3 g = params.gravity;
-#pragma omp parallel for schedule(static)
+  // Mere candidates add exact zeros, which changes no sum as long as no sum is -0: start from +0
+  // (gravity -0 becomes +0), so the candidate set, which depends on when the list was rebuilt,
+  // never changes a bit of the result.
+  const Vec3 g = params.gravity + Vec3::Zero();
+#pragma omp parallel for schedule(static, 256)
   for (long i = 0; i < static_cast<long>(n); ++i) {
     Vec3 f = p.mass[i] * g;
     Vec3 t = Vec3::Zero();
@@ -164,15 +167,9 @@ void Simulation::sum_forces() {
       const int code = csr_entry_[e];
       const long k = code / 2;
       // Torques, eq. 2.33-2.34: M = a n x f_t for i and j alike (M_j = (a_j / a_i) M_i).
-      if (k < npc) {
-        if (!pc.active[k]) continue;
-        f += (code % 2 == 0) ? pc.force[k] : Vec3(-pc.force[k]);  // eq. 2.31-2.32
-        t += p.radius[i] * pc.normal[k].cross(pc.tangential[k]);
-      } else {
-        if (!wc.active[k - npc]) continue;
-        f += wc.force[k - npc];
-        t += p.radius[i] * wc.normal[k - npc].cross(wc.tangential[k - npc]);
-      }
+      const ContactSum& c = k < npc ? pc.sum[k] : wc.sum[k - npc];
+      f += (code % 2 == 0) ? c.force : Vec3(-c.force);  // eq. 2.31-2.32
+      t += p.radius[i] * c.moment;
     }
     force_[i] = f;
     torque_[i] = t;
@@ -221,7 +218,7 @@ std::vector<Vec3> Simulation::wall_forces() const {
   std::vector<Vec3> f(walls.size(), Vec3::Zero());
   // key_j (the wall index) is valid even before the first step after a restart, when slots are not.
   const ContactList& wc = wall_contacts();
-  for (std::size_t k = 0; k < wc.size(); ++k) f[wc.key_j[k]] -= wc.force[k];
+  for (std::size_t k = 0; k < wc.size(); ++k) f[wc.key_j[k]] -= wc.force(k);
   return f;
 }
 

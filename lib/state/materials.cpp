@@ -68,6 +68,8 @@ MaterialTable::MaterialTable(std::vector<Material> materials, MixingRules rules,
       p.mu = std::tan(pick(&PairOverride::friction_angle, rules_.friction, A.friction_angle, B.friction_angle) * deg);
       p.gamma_n = damping_ratio(pick(&PairOverride::restitution, rules_.restitution, A.restitution, B.restitution));
       p.gamma_t = damping_ratio(pick(&PairOverride::restitution_t, rules_.restitution, A.restitution_t, B.restitution_t));
+      p.damping_n = 2.0 * p.gamma_n * std::sqrt(p.kn);
+      p.damping_t = 2.0 * p.gamma_t * std::sqrt(2.0 / 7.0 * p.kt);
       p.tensile_strength = pick(&PairOverride::tensile_strength, rules_.strength, A.tensile_strength, B.tensile_strength);
       p.cohesion = pick(&PairOverride::cohesion, rules_.strength, A.cohesion, B.cohesion);
       p.no_viscous_attraction =

@@ -50,6 +50,9 @@ struct PairParams {
   double mu = 0;        // tan(friction angle)
   double gamma_n = 0;   // damping ratio from restitution, eq. 2.29
   double gamma_t = 0;
+  // Dashpots c = damping x sqrt(m*) (eq. 2.28): damping_n = 2 gamma_n sqrt(kn); tangential with the
+  // effective mass 2/7 m* of the contact point (contact/contact_law.hpp): 2 gamma_t sqrt(2/7 kt).
+  double damping_n = 0, damping_t = 0;
   double tensile_strength = 0;  // F [N]
   double cohesion = 0;          // C [N]
   bool no_viscous_attraction = false;
