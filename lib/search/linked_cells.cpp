@@ -1,5 +1,7 @@
 #include "search/linked_cells.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -45,27 +47,36 @@ void LinkedCells::find_near_pairs(const Particles& p, std::vector<FoundContact>&
   static constexpr int kHalf[13][3] = {{1, 0, 0},  {-1, 1, 0}, {0, 1, 0},  {1, 1, 0},   {-1, -1, 1},
                                        {0, -1, 1}, {1, -1, 1}, {-1, 0, 1}, {0, 0, 1},   {1, 0, 1},
                                        {-1, 1, 1}, {0, 1, 1},  {1, 1, 1}};
-  auto test = [&](int a, int b) {
-    const double r = p.radius[a] + p.radius[b];
-    const double d2 = (p.x[a] - p.x[b]).squaredNorm();
-    if (d2 < (r + margin) * (r + margin)) {
-      if (p.id[a] < p.id[b]) out.push_back({p.id[a], p.id[b], a, b});
-      else out.push_back({p.id[b], p.id[a], b, a});
-    }
-  };
-  for (long cz = 0; cz < dims[2]; ++cz)
-    for (long cy = 0; cy < dims[1]; ++cy)
-      for (long cx = 0; cx < dims[0]; ++cx) {
-        const long c = (cz * dims[1] + cy) * dims[0] + cx;
-        for (int a = head_[c]; a >= 0; a = next_[a]) {
-          for (int b = next_[a]; b >= 0; b = next_[b]) test(a, b);
-          for (const auto& o : kHalf) {
-            const long x = cx + o[0], y = cy + o[1], z = cz + o[2];
-            if (x < 0 || y < 0 || z < 0 || x >= dims[0] || y >= dims[1] || z >= dims[2]) continue;
-            for (int b = head_[(z * dims[1] + y) * dims[0] + x]; b >= 0; b = next_[b]) test(a, b);
-          }
+  // Cells are searched in parallel, each thread appending to its own list; the lists are joined
+  // in thread order (callers that need an order independent of the thread count sort them).
+  const int threads = omp_get_max_threads();
+  per_thread_.resize(threads);
+#pragma omp parallel num_threads(threads)
+  {
+    std::vector<FoundContact>& mine = per_thread_[omp_get_thread_num()];
+    mine.clear();
+    auto test = [&](int a, int b) {
+      const double r = p.radius[a] + p.radius[b];
+      const double d2 = (p.x[a] - p.x[b]).squaredNorm();
+      if (d2 < (r + margin) * (r + margin)) {
+        if (p.id[a] < p.id[b]) mine.push_back({p.id[a], p.id[b], a, b});
+        else mine.push_back({p.id[b], p.id[a], b, a});
+      }
+    };
+#pragma omp for schedule(dynamic, 64)
+    for (long c = 0; c < ncell; ++c) {
+      const long cx = c % dims[0], cy = (c / dims[0]) % dims[1], cz = c / (dims[0] * dims[1]);
+      for (int a = head_[c]; a >= 0; a = next_[a]) {
+        for (int b = next_[a]; b >= 0; b = next_[b]) test(a, b);
+        for (const auto& o : kHalf) {
+          const long x = cx + o[0], y = cy + o[1], z = cz + o[2];
+          if (x < 0 || y < 0 || z < 0 || x >= dims[0] || y >= dims[1] || z >= dims[2]) continue;
+          for (int b = head_[(z * dims[1] + y) * dims[0] + x]; b >= 0; b = next_[b]) test(a, b);
         }
       }
+    }
+  }
+  for (const std::vector<FoundContact>& part : per_thread_) out.insert(out.end(), part.begin(), part.end());
 }
 
 }  // namespace dem

@@ -13,12 +13,13 @@ namespace dem {
 class LinkedCells {
  public:
   // Appends every pair closer than touching plus `margin` (|x_i - x_j| < a_i + a_j + margin) to
-  // `out`, keyed by ids (key_i < key_j), in a deterministic order (not sorted). A margin lets
-  // bonded pairs be found while apart (in tension).
+  // `out`, keyed by ids (key_i < key_j), in no particular order (it depends on the thread count:
+  // sort it). A margin lets bonded pairs be found while apart (in tension).
   void find_near_pairs(const Particles& p, std::vector<FoundContact>& out, double margin = 0);
 
  private:
   std::vector<int> head_, next_;
+  std::vector<std::vector<FoundContact>> per_thread_;
 };
 
 }  // namespace dem

@@ -1,6 +1,7 @@
 #include "search/neighbour_list.hpp"
 
 #include <algorithm>
+#include <parallel/algorithm>
 #include <cmath>
 
 namespace dem {
@@ -31,7 +32,7 @@ bool NeighbourList::needs_rebuild(const Particles& p, const std::vector<WallGeom
 void NeighbourList::build(const Particles& p, const std::vector<WallGeometry>& walls, double margin, double skin) {
   pairs_.clear();
   cells_.find_near_pairs(p, pairs_, margin + skin);
-  std::sort(pairs_.begin(), pairs_.end());
+  __gnu_parallel::sort(pairs_.begin(), pairs_.end());  // keys are unique: the same order for any thread count
 
   wall_pairs_.clear();
   const long n = static_cast<long>(p.size());

@@ -122,8 +122,8 @@ void Simulation::find_contacts() {
   update_wall_geometry();
   if (!neighbours_.update(particles, wall_geometry_, margin, skin())) return;
   // New candidates: carry the history over by key; which pairs touch is decided by the force loop.
-  carry_history(pairs_, neighbours_.pairs(), scratch_);
-  carry_history(walls_, neighbours_.wall_pairs(), scratch_);
+  carry_history(pairs_, neighbours_.pairs(), pair_scratch_);
+  carry_history(walls_, neighbours_.wall_pairs(), wall_scratch_);
   index_contacts_per_particle();
 }
 
@@ -159,7 +159,7 @@ void Simulation::sum_forces() {
   // (gravity -0 becomes +0), so the candidate set, which depends on when the list was rebuilt,
   // never changes a bit of the result.
   const Vec3 g = params.gravity + Vec3::Zero();
-#pragma omp parallel for schedule(static, 256)
+#pragma omp parallel for schedule(static)
   for (long i = 0; i < static_cast<long>(n); ++i) {
     Vec3 f = p.mass[i] * g;
     Vec3 t = Vec3::Zero();

@@ -71,7 +71,7 @@ class Simulation {
   NeighbourList neighbours_;
   // Every candidate pair of the neighbour list, with its history; `active` = a contact this step.
   ContactList pairs_, walls_;
-  ContactList scratch_;  // working storage of carry_history
+  ContactList pair_scratch_, wall_scratch_;  // working storage of carry_history (each keeps its capacity)
   mutable ContactList pair_view_, wall_view_;  // pair_contacts(), wall_contacts()
   mutable bool views_current_ = false;
   std::vector<WallGeometry> wall_geometry_;
