@@ -12,9 +12,9 @@
 #include <cstdio>
 #include <cstring>
 #include <numbers>
-#include <random>
 #include <string>
 
+#include "settle_scene.hpp"
 #include "sim/force_loop.hpp"
 #include "sim/simulation.hpp"
 
@@ -26,16 +26,7 @@ double seconds_since(std::chrono::steady_clock::time_point t) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
 }
 
-Material bead(double eta) {
-  Material m;
-  m.name = "bead";
-  m.density = 2500;
-  m.kn = 2000;
-  m.kt = 2.0 / 7.0 * 2000;
-  m.friction_angle = std::atan(0.5) * 180 / std::numbers::pi;
-  m.restitution = m.restitution_t = eta;
-  return m;
-}
+Material bead(double eta) { return bench::settle_bead(eta); }
 
 // Binary head-on collision of two 1 mm spheres at 0.2 m/s relative speed: realised restitution
 // and contact duration against eta and pi/omega_d (the analytic answers).
@@ -66,26 +57,11 @@ void collision_errors(double frac, double eta, double& e_err, double& t_err) {
   t_err = (steps * sim.dt - tc) / tc;
 }
 
-// The settle scene of ../shared/peers (regenerated here): N spheres of radius 1 mm on a simple
-// cubic lattice of spacing 2.5 mm with random velocities in [-0.1, 0.1] m/s, in a closed box.
+// The settle scene of bench/settle_scene.hpp with one material (walls included) of restitution eta.
 Simulation settle_scene(int nx, int ny, int nz, double eta, bool walls) {
-  Simulation sim;
+  Simulation sim = bench::settle_scene({nx, ny, nz}, eta, walls);
   sim.materials = MaterialTable({bead(eta)}, {});
-  const double s = 0.0025;
-  const Vec3 hi(nx * s, ny * s, nz * s + 0.01);
-  if (walls)
-    for (int axis = 0; axis < 3; ++axis)
-      for (bool side : {false, true}) sim.walls.push_back(Wall{"w", 0, box_face(Vec3::Zero(), hi, axis, side), {}});
-  std::mt19937_64 rng(12345);
-  std::uniform_real_distribution<double> vel(-0.1, 0.1);
-  Index id = 0;
-  for (int k = 0; k < nz; ++k)
-    for (int j = 0; j < ny; ++j)
-      for (int i = 0; i < nx; ++i) {
-        sim.particles.add(id, Vec3((i + 0.5) * s, (j + 0.5) * s, (k + 0.5) * s), 0.001, 2500, 0);
-        sim.particles.v[id] = Vec3(vel(rng), vel(rng), vel(rng));
-        ++id;
-      }
+  for (Wall& w : sim.walls) w.material = 0;
   return sim;
 }
 

@@ -24,15 +24,21 @@ inline double restitution_of(double gamma) { return std::exp(-std::numbers::pi *
 //   sqrt(2) larger (eta = 0.366);
 // - tangential: c_t = c_n / 2. Ours is c_t = 2 gamma_t sqrt(2/7 m_eff kt) with kt = 2/7 kn (see
 //   contact/contact_law.hpp), so gamma_t = 7/4 gamma_n.
-inline MaterialTable settle_materials(double eta = 0.5) {
+// A 2500 kg/m^3 bead, kn = 2000 N/m, kt = 2/7 kn, friction 0.5, restitution eta (both).
+inline Material settle_bead(double eta) {
   Material bead;
   bead.name = "bead";
   bead.density = 2500;
   bead.kn = 2000;
   bead.kt = 2.0 / 7.0 * 2000;
   bead.friction_angle = std::atan(0.5) * 180 / std::numbers::pi;
+  bead.restitution = bead.restitution_t = eta;
+  return bead;
+}
+
+inline MaterialTable settle_materials(double eta = 0.5) {
+  Material bead = settle_bead(eta);
   const double g = damping_ratio(eta);
-  bead.restitution = eta;
   bead.restitution_t = restitution_of(7.0 / 4.0 * g);
   Material wall = bead;
   wall.name = "wall";

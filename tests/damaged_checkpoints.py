@@ -8,11 +8,11 @@ variants made with h5py and the flipped data bytes are sealed again (`reseal`) a
 rejected by the reader's own checks (shapes, attributes, Fletcher32).
 
 Variants (all must be rejected): truncations at 12 lengths; one flipped byte in the data of every
-non-empty dataset, sealed and resealed (seal, then Fletcher32); 6 missing datasets; an extent larger than the file; wrong format attribute; wrong schema
+non-empty dataset, sealed and resealed (seal, then Fletcher32); 6 missing datasets; an extent larger than the file; contacts out of key order; wrong format attribute; wrong schema
 version; a foreign HDF5 file; an empty file; a text file. Also 40 single-bit flips at random
 positions anywhere in the file (metadata and seal included): each must be rejected (exit 4), never
 read as different numbers or crash.
-Usage: damaged_checkpoints.py TOOLS_DIR GOOD.h5 WORKDIR"""
+Usage: damaged_checkpoints.py TOOLS_DIR GOOD.h5 WORKDIR WITH_CONTACTS.h5 (a checkpoint holding contacts)"""
 import os
 import random
 import shutil
@@ -48,7 +48,7 @@ def read_back(tools, path, workdir):
     return r.returncode, r.stderr, table
 
 
-def main(tools, good, workdir):
+def main(tools, good, workdir, with_contacts):
     global GOOD
     GOOD = good
     os.makedirs(workdir, exist_ok=True)
@@ -93,11 +93,19 @@ def main(tools, good, workdir):
     with h5py.File(variant("huge_extent"), "r+") as f:
         del f["particles/id"]
         f.create_dataset("particles/id", shape=(10**11,), dtype="i8", chunks=(1024,), fletcher32=True)
+    # Contact history is carried over by a merge of key-sorted lists: an unsorted list is refused.
+    path = os.path.join(workdir, "unsorted_contacts.h5")
+    shutil.copyfile(with_contacts, path)
+    variants.append(("unsorted_contacts", path))
+    with h5py.File(path, "r+") as f:
+        ids = f["contacts/pair_ids"][...]
+        assert len(ids) >= 2, "the checkpoint must hold contacts"
+        f["contacts/pair_ids"][...] = ids[::-1]
     with h5py.File(variant("wrong_format"), "r+") as f:
         f.attrs.modify("format", np.bytes_("other-code"))
     with h5py.File(variant("wrong_schema"), "r+") as f:
         f.attrs.modify("schema_version", np.int32(2))
-    resealed += [path for name, path in variants if name.startswith(("huge_extent", "missing_", "wrong_"))]
+    resealed += [path for name, path in variants if name.startswith(("huge_extent", "unsorted_", "missing_", "wrong_"))]
     for path in resealed:
         reseal(path)
     variants.append(("unsealed_edit", variant("unsealed_edit")))

@@ -21,19 +21,23 @@ std::string seal_line(unsigned long crc, unsigned long long size) {
   return line;
 }
 
+// zlib's CRC-32, fed in pieces because it takes 32-bit lengths.
+unsigned long crc32_update(unsigned long crc, const char* data, unsigned long long size) {
+  for (unsigned long long done = 0; done < size;) {
+    const uInt n = static_cast<uInt>(std::min<unsigned long long>(size - done, 1u << 30));
+    crc = crc32(crc, reinterpret_cast<const Bytef*>(data + done), n);
+    done += n;
+  }
+  return crc;
+}
+
 }  // namespace
 
 void seal_image(std::vector<char>& image) {
   if (image.size() < kSealBytes) throw IoError("checkpoint image smaller than its seal");
   const char* body = image.data() + kSealBytes;
   const unsigned long long size = image.size() - kSealBytes;
-  unsigned long crc = crc32(0L, Z_NULL, 0);
-  for (unsigned long long done = 0; done < size;) {  // zlib takes 32-bit lengths
-    const uInt n = static_cast<uInt>(std::min<unsigned long long>(size - done, 1u << 30));
-    crc = crc32(crc, reinterpret_cast<const Bytef*>(body + done), n);
-    done += n;
-  }
-  const std::string line = seal_line(crc, size);
+  const std::string line = seal_line(crc32_update(crc32(0L, Z_NULL, 0), body, size), size);
   std::fill(image.begin(), image.begin() + kSealBytes, '\0');
   std::memcpy(image.data(), line.data(), line.size());
 }
@@ -41,7 +45,7 @@ void seal_image(std::vector<char>& image) {
 void check_seal(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw IoError(path + ": cannot open for reading");
-  std::vector<char> head(kSealBytes, '\0');
+  std::vector<char> head(kSealBytes + 1, '\0');  // the extra NUL ends what sscanf may read
   in.read(head.data(), kSealBytes);
   const std::size_t got = static_cast<std::size_t>(in.gcount());
   if (got < sizeof kMagic - 1 || std::memcmp(head.data(), kMagic, sizeof kMagic - 1) != 0)
@@ -52,7 +56,7 @@ void check_seal(const std::string& path) {
     throw IoError(path + ": damaged checkpoint (its seal line cannot be read)");
   const std::string line = seal_line(crc, size);
   const bool clean = std::memcmp(head.data(), line.data(), line.size()) == 0 &&
-                     std::all_of(head.begin() + static_cast<long>(line.size()), head.end(), [](char c) { return c == '\0'; });
+                     std::all_of(head.begin() + static_cast<long>(line.size()), head.begin() + kSealBytes, [](char c) { return c == '\0'; });
   if (!clean) throw IoError(path + ": damaged checkpoint (its seal is damaged)");
 
   unsigned long actual = crc32(0L, Z_NULL, 0);
@@ -61,7 +65,7 @@ void check_seal(const std::string& path) {
   while (in) {
     in.read(buf.data(), static_cast<std::streamsize>(buf.size()));
     const std::streamsize n = in.gcount();
-    actual = crc32(actual, reinterpret_cast<const Bytef*>(buf.data()), static_cast<uInt>(n));
+    actual = crc32_update(actual, buf.data(), static_cast<unsigned long long>(n));
     bytes += static_cast<unsigned long long>(n);
   }
   if (bytes != size)

@@ -169,8 +169,7 @@ void compact(const GenerateOptions& o) {
     // Done when every wall is within 2 % of the target and the bed is at rest (settle criterion).
     while (steps < max_steps && !done) {
       const std::vector<Vec3> f = sim.wall_forces();
-      std::vector<int> contacts(sim.walls.size(), 0);
-      for (std::size_t k = 0; k < sim.wall_contacts().size(); ++k) ++contacts[sim.wall_contacts().key_j[k]];
+      const std::vector<int> contacts = sim.wall_contact_counts();
       for (std::size_t m = 0; m < moving.size(); ++m) {
         const double err = (c.target_stress - wall_stress(m, f)) * area[m];
         const int n = contacts[moving[m]];  // a wall that touches nothing approaches at full speed

@@ -10,15 +10,25 @@
 
 namespace dem {
 
+namespace {
+
+SimParams params_from(const Scene& scene) {
+  SimParams p;
+  p.gravity = scene.simulation.gravity;
+  p.alpha_r = scene.simulation.alpha_r;
+  p.alpha_theta = scene.simulation.alpha_theta;
+  p.skin = scene.simulation.skin;
+  p.max_overlap = scene.simulation.max_overlap;
+  return p;
+}
+
+}  // namespace
+
 Simulation simulation_from_scene(const Scene& scene) {
   Simulation sim;
   sim.materials = MaterialTable(scene.materials, scene.mixing, scene.pairs);
   for (const WallSpec& w : scene.walls) sim.walls.push_back(Wall{w.name, w.material, w.vertices, WallMotion{}});
-  sim.params.gravity = scene.simulation.gravity;
-  sim.params.alpha_r = scene.simulation.alpha_r;
-  sim.params.alpha_theta = scene.simulation.alpha_theta;
-  sim.params.skin = scene.simulation.skin;
-  sim.params.max_overlap = scene.simulation.max_overlap;
+  sim.params = params_from(scene);
   return sim;
 }
 
@@ -66,11 +76,7 @@ void adopt_scene(Simulation& sim, const Scene& scene, WallPositions positions) {
   }
   sim.set_contacts(sim.pair_contacts(), std::move(wc));
 
-  sim.params.gravity = scene.simulation.gravity;
-  sim.params.alpha_r = scene.simulation.alpha_r;
-  sim.params.alpha_theta = scene.simulation.alpha_theta;
-  sim.params.skin = scene.simulation.skin;
-  sim.params.max_overlap = scene.simulation.max_overlap;
+  sim.params = params_from(scene);
 }
 
 double choose_time_step(const Simulation& sim, const SimulationSpec& spec) {

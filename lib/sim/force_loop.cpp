@@ -31,10 +31,7 @@ double pair_forces(const ForceLoopInput& in, ContactList& pc) {
     int contact[kChunk];
     int m = 0;
     for (long k = first; k < last; ++k) {
-      const int i = pc.slot_i[k], j = pc.slot_j[k];
-      const double r = p.radius[i] + p.radius[j];
-      const bool touching = (p.x[j] - p.x[i]).squaredNorm() < r * r;
-      pc.active[k] = touching || pc.bonded[k];
+      pc.active[k] = pair_touching(p, pc.slot_i[k], pc.slot_j[k]) || pc.bonded[k];
       contact[m] = static_cast<int>(k);
       m += pc.active[k];
       if (!pc.active[k]) pc.spring[k] = Vec3::Zero(), pc.sum[k] = ContactSum();
@@ -69,9 +66,8 @@ double wall_forces(const ForceLoopInput& in, ContactList& wc) {
   for (long k = 0; k < n; ++k) {
     const int i = wc.slot_i[k], w = wc.slot_j[k];
     const WallGeometry& g = in.geometry[w];
-    const Vec3 cp = closest_point(g, p.x[i]);
-    const Vec3 d = cp - p.x[i];
-    const double d2 = d.squaredNorm();
+    Vec3 d;
+    const double d2 = wall_gap2(p, g, i, d);
     if (d2 >= p.radius[i] * p.radius[i] && !wc.bonded[k]) {
       wc.active[k] = 0;
       wc.spring[k] = Vec3::Zero();

@@ -27,10 +27,20 @@ enum class ForceVariant { Cundall, Liu, Mendes, Mixed };
 ForceVariant choose_force_variant(const Simulation& sim);
 const char* variant_name(ForceVariant v);
 
+// Whether a candidate touches now: the test that makes it a contact (with a bond, so does holding).
+inline bool pair_touching(const Particles& p, int i, int j) {
+  const double r = p.radius[i] + p.radius[j];
+  return (p.x[j] - p.x[i]).squaredNorm() < r * r;
+}
+inline double wall_gap2(const Particles& p, const WallGeometry& g, int i, Vec3& to_wall) {
+  to_wall = closest_point(g, p.x[i]) - p.x[i];
+  return to_wall.squaredNorm();  // touching when < radius^2
+}
+
 // For every candidate of `pairs` and `walls`: decides whether it is a contact (`active`: touching,
-// or holding by a bond), and if so fills .normal, .force, .tangential and updates its history;
-// a candidate that is no contact loses its spring. Returns the largest overlap relative to the
-// smaller radius of its contact.
+// or holding by a bond), and if so fills .normal and .sum and updates its history; a candidate
+// that is no contact gets a zero .sum and loses its spring. Returns the largest overlap relative
+// to the smaller radius of its contact.
 double compute_contact_forces(const ForceLoopInput& in, ForceVariant variant, ContactList& pairs, ContactList& walls);
 
 }  // namespace dem

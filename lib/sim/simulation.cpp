@@ -14,7 +14,7 @@ void Simulation::advance() {
   find_contacts();
   const ForceLoopInput in{particles, materials, walls, wall_geometry_, dt};
   const double worst_overlap = compute_contact_forces(in, choose_force_variant(*this), pairs_, walls_);
-  views_current_ = false;
+  contacts_modified();
   if (worst_overlap > params.max_overlap) report_overlap(worst_overlap);
   sum_forces();
   integrate();
@@ -24,14 +24,22 @@ void Simulation::advance() {
 }
 
 const ContactList& Simulation::pair_contacts() const {
-  if (!views_current_) active_contacts(pairs_, pair_view_), active_contacts(walls_, wall_view_), views_current_ = true;
+  if (!pair_view_current_) {
+    active_contacts(pairs_, pair_view_);
+    pair_view_current_ = true;
+  }
   return pair_view_;
 }
 
 const ContactList& Simulation::wall_contacts() const {
-  pair_contacts();
+  if (!wall_view_current_) {
+    active_contacts(walls_, wall_view_);
+    wall_view_current_ = true;
+  }
   return wall_view_;
 }
+
+void Simulation::contacts_modified() { pair_view_current_ = wall_view_current_ = false; }
 
 void Simulation::set_contacts(ContactList pairs, ContactList walls) {
   pairs_ = std::move(pairs);
@@ -43,7 +51,7 @@ void Simulation::set_contacts(ContactList pairs, ContactList walls) {
     std::fill(c->slot_j.begin(), c->slot_j.end(), -1);
   }
   neighbours_ = NeighbourList();  // the next step finds the candidates and carries this history over
-  views_current_ = false;
+  contacts_modified();
   count_bonds();
 }
 
@@ -76,18 +84,16 @@ std::size_t Simulation::bond_present_contacts(bool walls_too) {
   // The pairs touching now (the test of the force loop) and the contacts holding already.
   const Particles& p = particles;
   std::size_t n = 0;
-  for (std::size_t k = 0; k < pairs_.size(); ++k) {
-    const int i = pairs_.slot_i[k], j = pairs_.slot_j[k];
-    const double r = p.radius[i] + p.radius[j];
-    if ((p.x[j] - p.x[i]).squaredNorm() < r * r || pairs_.bonded[k]) pairs_.bonded[k] = pairs_.active[k] = 1, ++n;
-  }
+  for (std::size_t k = 0; k < pairs_.size(); ++k)
+    if (pair_touching(p, pairs_.slot_i[k], pairs_.slot_j[k]) || pairs_.bonded[k]) pairs_.bonded[k] = pairs_.active[k] = 1, ++n;
   if (walls_too)
     for (std::size_t k = 0; k < walls_.size(); ++k) {
       const int i = walls_.slot_i[k];
-      const Vec3 c = closest_point(wall_geometry_[walls_.slot_j[k]], p.x[i]);
-      if ((c - p.x[i]).squaredNorm() < p.radius[i] * p.radius[i] || walls_.bonded[k]) walls_.bonded[k] = walls_.active[k] = 1, ++n;
+      Vec3 d;
+      if (wall_gap2(p, wall_geometry_[walls_.slot_j[k]], i, d) < p.radius[i] * p.radius[i] || walls_.bonded[k])
+        walls_.bonded[k] = walls_.active[k] = 1, ++n;
     }
-  views_current_ = false;
+  contacts_modified();
   count_bonds();
   return n;
 }
@@ -214,12 +220,19 @@ double Simulation::kinetic_energy() const {
   return e;
 }
 
+// Both read the candidates directly (no compaction: the stress servo calls them every step).
+// key_j (the wall index) is valid even before the first step after a restart, when slots are not.
 std::vector<Vec3> Simulation::wall_forces() const {
   std::vector<Vec3> f(walls.size(), Vec3::Zero());
-  // key_j (the wall index) is valid even before the first step after a restart, when slots are not.
-  const ContactList& wc = wall_contacts();
-  for (std::size_t k = 0; k < wc.size(); ++k) f[wc.key_j[k]] -= wc.force(k);
+  for (std::size_t k = 0; k < walls_.size(); ++k)
+    if (walls_.active[k]) f[walls_.key_j[k]] -= walls_.force(k);
   return f;
+}
+
+std::vector<int> Simulation::wall_contact_counts() const {
+  std::vector<int> n(walls.size(), 0);
+  for (std::size_t k = 0; k < walls_.size(); ++k) n[walls_.key_j[k]] += walls_.active[k];
+  return n;
 }
 
 }  // namespace dem

@@ -56,6 +56,7 @@ class Simulation {
 
   double kinetic_energy() const;  // translational + rotational [J]
   std::vector<Vec3> wall_forces() const;  // force on each wall this step [N]
+  std::vector<int> wall_contact_counts() const;  // contacts on each wall this step
   const std::vector<WallGeometry>& wall_geometry() const { return wall_geometry_; }
 
  private:
@@ -73,7 +74,8 @@ class Simulation {
   ContactList pairs_, walls_;
   ContactList pair_scratch_, wall_scratch_;  // working storage of carry_history (each keeps its capacity)
   mutable ContactList pair_view_, wall_view_;  // pair_contacts(), wall_contacts()
-  mutable bool views_current_ = false;
+  mutable bool pair_view_current_ = false, wall_view_current_ = false;
+  void contacts_modified();  // the views must be compacted again
   std::vector<WallGeometry> wall_geometry_;
   std::vector<Vec3> force_, torque_;
   // Per-particle lists of candidate entries in a fixed order, rebuilt with the neighbour list.
