@@ -10,7 +10,7 @@ import numpy as np
 def main(path, expect_writer):
     with h5py.File(path, "r") as f:
         assert f.attrs["format"] == b"dem-checkpoint", f.attrs["format"]
-        assert int(f.attrs["schema_version"]) == 1
+        assert int(f.attrs["schema_version"]) == 2
         assert f.attrs["writer"].decode() == expect_writer, f.attrs["writer"]
         assert len(f.attrs["writer_version"]) > 0
 
@@ -39,7 +39,9 @@ def main(path, expect_writer):
             "materials/no_viscous_attraction": ("i", (m,), None),
             "walls/name": ("S", (w,), None), "walls/material": ("i", (w,), None),
             "walls/vertex_count": ("i", (w,), None), "walls/base_vertices": ("f", (w, 4, 3), "m"),
-            "walls/vertices": ("f", (w, 4, 3), "m"), "walls/motion_kind": ("i", (w,), None),
+            "walls/vertices": ("f", (w, 4, 3), "m"), "walls/motion_table": ("i", (w,), None),
+            "walls/motion_centre": ("f", (w, 3), "m"), "walls/motion_axis": ("f", (w, 3), "1"),
+            "walls/motion_angular_speed": ("f", (w,), "rad/s"),
             "walls/motion_velocity": ("f", (w, 3), "m/s"), "walls/motion_direction": ("f", (w, 3), "1"),
             "walls/motion_frequency": ("f", (w,), "Hz"), "walls/motion_amplitude": ("f", (w,), "m"),
             "walls/motion_t0": ("f", (w,), "s"),
@@ -77,7 +79,7 @@ def main(path, expect_writer):
             assert np.all(pairs[:, 0] < pairs[:, 1]), "pair keys ordered id_i < id_j"
             assert np.all(np.isin(pairs, ids)), "pair keys are particle ids"
         assert f["state/dt"][0] > 0 and f["state/step"][0] > 0
-    print(f"{path}: schema v1 ok ({n} particles, {m} materials, {w} walls)")
+    print(f"{path}: schema v2 ok ({n} particles, {m} materials, {w} walls)")
 
 
 if __name__ == "__main__":

@@ -104,7 +104,7 @@ def main(tools, good, workdir, with_contacts):
     with h5py.File(variant("wrong_format"), "r+") as f:
         f.attrs.modify("format", np.bytes_("other-code"))
     with h5py.File(variant("wrong_schema"), "r+") as f:
-        f.attrs.modify("schema_version", np.int32(2))
+        f.attrs.modify("schema_version", np.int32(1))  # the previous version
     resealed += [path for name, path in variants if name.startswith(("huge_extent", "unsorted_", "missing_", "wrong_"))]
     for path in resealed:
         reseal(path)

@@ -31,7 +31,6 @@ class CheckpointTest : public ::testing::Test {
     sim_.materials = MaterialTable({m, Material{"steel", 7800, 2e5, 1e5, 20, 0.4, 0.6, NormalLaw::Cundall}}, {});
     sim_.walls.push_back(Wall{"floor", 1, {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0)}, {}});
     WallMotion vib;
-    vib.kind = WallMotion::Kind::Vibrate;
     vib.frequency = 20;
     vib.amplitude = 1e-3;
     sim_.walls[0].start_motion(vib, 0.0);

@@ -68,7 +68,6 @@ TEST(NeighbourList, ContactsEqualBruteForceEveryStep) {
   const double L = 0.05;
   sim.walls.push_back(Wall{"floor", 0, {Vec3(0, 0, 0), Vec3(L, 0, 0), Vec3(L, L, 0), Vec3(0, L, 0)}, {}});
   Wall lid{"lid", 0, {Vec3(0, 0, L), Vec3(L, 0, L), Vec3(L, L, L), Vec3(0, L, L)}, {}};
-  lid.motion.kind = WallMotion::Kind::Translate;
   lid.motion.velocity = Vec3(0, 0, -0.2);
   sim.walls.push_back(lid);
   for (int k = 0; k < 300; ++k) {

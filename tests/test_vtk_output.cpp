@@ -91,7 +91,6 @@ class VtkOutputTest : public ::testing::Test {
 
     Wall tri{"floor", 1, {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)}, {}};
     Wall quad{"lid", 2, {Vec3(0, 0, 1), Vec3(1, 0, 1), Vec3(1, 1, 1), Vec3(0, 1, 1)}, {}};
-    quad.motion.kind = WallMotion::Kind::Translate;
     quad.motion.velocity = Vec3(0, 0, 0.5);  // binary-exact numbers: at t = 0.75 the lid is 0.25 higher
     quad.motion.t0 = 0.25;
     walls_ = {tri, quad};

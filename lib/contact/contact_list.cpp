@@ -43,7 +43,9 @@ void carry_history(ContactList& list, const std::vector<FoundContact>& found, Co
     next.slot_j[k] = f.slot_j;
     next.spring[k] = before ? list.spring[o] : Vec3::Zero();
     next.bonded[k] = before ? list.bonded[o] : 0;
-    next.active[k] = 0;  // decided by the force loop
+    // Whether it was a contact at the last step: the wall loop hands a lost contact's spring to a
+    // new one of the same particle (a sphere rolling from one mesh element onto the next).
+    next.active[k] = before ? list.active[o] : 0;
     next.sum[k] = ContactSum();
   }
   std::swap(list, next);

@@ -403,34 +403,54 @@ void write_all(Writer& w, const Simulation& sim, const CheckpointMeta& meta) {
   w.group("/walls");
   const std::size_t nw = sim.walls.size();
   std::vector<std::string> names;
-  std::vector<int> material, nvert, kind;
-  std::vector<Vec3> base(4 * nw, Vec3::Zero()), current(4 * nw, Vec3::Zero()), vel, dir;
-  std::vector<double> freq, amp, t0;
+  std::vector<int> material, nvert, table_index, table_start{0};
+  std::vector<Vec3> base(4 * nw, Vec3::Zero()), current(4 * nw, Vec3::Zero()), vel, dir, centre, axis;
+  std::vector<double> freq, amp, spin, t0, table_rows;
   for (std::size_t k = 0; k < nw; ++k) {
     const Wall& wl = sim.walls[k];
+    const WallMotion& m = wl.motion;
     names.push_back(wl.name);
     material.push_back(wl.material);
     nvert.push_back(static_cast<int>(wl.base.size()));
     const std::vector<Vec3> now = wl.vertices_at(sim.time);
     for (std::size_t v = 0; v < wl.base.size(); ++v) base[4 * k + v] = wl.base[v], current[4 * k + v] = now[v];
-    kind.push_back(static_cast<int>(wl.motion.kind));
-    vel.push_back(wl.motion.velocity);
-    dir.push_back(wl.motion.direction);
-    freq.push_back(wl.motion.frequency);
-    amp.push_back(wl.motion.amplitude);
-    t0.push_back(wl.motion.t0);
+    vel.push_back(m.velocity);
+    dir.push_back(m.direction);
+    freq.push_back(m.frequency);
+    amp.push_back(m.amplitude);
+    centre.push_back(m.centre);
+    axis.push_back(m.axis);
+    spin.push_back(m.angular_speed);
+    t0.push_back(m.t0);
+    // Time tables are stored once for consecutive walls sharing one (the elements of a mesh).
+    if (m.table_time.empty()) {
+      table_index.push_back(-1);
+    } else if (k > 0 && !table_index.empty() && table_index.back() >= 0 && sim.walls[k - 1].motion.table_time == m.table_time &&
+               sim.walls[k - 1].motion.table_offset == m.table_offset) {
+      table_index.push_back(table_index.back());
+    } else {
+      table_index.push_back(static_cast<int>(table_start.size()) - 1);
+      for (std::size_t r = 0; r < m.table_time.size(); ++r)
+        table_rows.insert(table_rows.end(), {m.table_time[r], m.table_offset[r].x(), m.table_offset[r].y(), m.table_offset[r].z()});
+      table_start.push_back(static_cast<int>(table_rows.size() / 4));
+    }
   }
   w.strings("/walls/name", names);
   w.int32s("/walls/material", material);
   w.int32s("/walls/vertex_count", nvert);
   w.array("/walls/base_vertices", H5T_NATIVE_DOUBLE, nw ? base.front().data() : nullptr, {nw, 4, 3}, "m");
   w.array("/walls/vertices", H5T_NATIVE_DOUBLE, nw ? current.front().data() : nullptr, {nw, 4, 3}, "m");
-  w.int32s("/walls/motion_kind", kind);
   w.vec3s("/walls/motion_velocity", vel, "m/s");
   w.vec3s("/walls/motion_direction", dir, "1");
   w.doubles("/walls/motion_frequency", freq, "Hz");
   w.doubles("/walls/motion_amplitude", amp, "m");
+  w.vec3s("/walls/motion_centre", centre, "m");
+  w.vec3s("/walls/motion_axis", axis, "1");
+  w.doubles("/walls/motion_angular_speed", spin, "rad/s");
   w.doubles("/walls/motion_t0", t0, "s");
+  w.int32s("/walls/motion_table", table_index);
+  w.int32s("/walls/motion_table_start", table_start);
+  w.array("/walls/motion_table_rows", H5T_NATIVE_DOUBLE, table_rows.data(), {table_rows.size() / 4, 4}, nullptr);
 }
 
 }  // namespace
@@ -537,23 +557,48 @@ void read_checkpoint(const std::string& path, Simulation& sim, CheckpointMeta& m
 
   const std::vector<std::string> wnames = r.strings("/walls/name");
   const long nw = static_cast<long>(wnames.size());
-  const std::vector<int> wmat = r.int32s("/walls/material", nw), nvert = r.int32s("/walls/vertex_count", nw),
-                         kind = r.int32s("/walls/motion_kind", nw);
+  const std::vector<int> wmat = r.int32s("/walls/material", nw), nvert = r.int32s("/walls/vertex_count", nw);
   const std::vector<double> base = r.values<double>("/walls/base_vertices", H5T_NATIVE_DOUBLE, std::vector<long>{nw, 4, 3});
   // Written for readers; read here too so that its checksum is verified and it must agree.
   const std::vector<double> current = r.values<double>("/walls/vertices", H5T_NATIVE_DOUBLE, std::vector<long>{nw, 4, 3});
-  const std::vector<Vec3> vel = r.vec3s("/walls/motion_velocity", nw), dir = r.vec3s("/walls/motion_direction", nw);
+  const std::vector<Vec3> vel = r.vec3s("/walls/motion_velocity", nw), dir = r.vec3s("/walls/motion_direction", nw),
+                          centre = r.vec3s("/walls/motion_centre", nw), axis = r.vec3s("/walls/motion_axis", nw);
   const std::vector<double> freq = r.doubles("/walls/motion_frequency", nw), amp = r.doubles("/walls/motion_amplitude", nw),
-                            t0 = r.doubles("/walls/motion_t0", nw);
+                            spin = r.doubles("/walls/motion_angular_speed", nw), t0 = r.doubles("/walls/motion_t0", nw);
+  const std::vector<int> table_index = r.int32s("/walls/motion_table", nw), table_start = r.int32s("/walls/motion_table_start");
+  const std::vector<double> table_rows = r.values<double>("/walls/motion_table_rows", H5T_NATIVE_DOUBLE, -1, 4);
+  const long ntables = static_cast<long>(table_start.size()) - 1, nrows = static_cast<long>(table_rows.size() / 4);
+  if (ntables < 0 || table_start[0] != 0 || table_start.back() != nrows)
+    throw IoError(path + ": /walls/motion_table_start does not fit /walls/motion_table_rows (damaged file)");
   sim.walls.assign(nw, Wall{});
   for (long k = 0; k < nw; ++k) {
     Wall& wl = sim.walls[k];
     wl.name = wnames[k];
     wl.material = wmat[k];
-    if (nvert[k] < 3 || nvert[k] > 4 || wmat[k] < 0 || wmat[k] >= nm || kind[k] < 0 || kind[k] > 2)
+    const int tab = table_index[k];
+    if (nvert[k] < 3 || nvert[k] > 4 || wmat[k] < 0 || wmat[k] >= nm || tab < -1 || tab >= ntables)
       throw IoError(path + ": wall '" + wl.name + "' has invalid data (damaged file)");
     for (int v = 0; v < nvert[k]; ++v) wl.base.emplace_back(base[12 * k + 3 * v], base[12 * k + 3 * v + 1], base[12 * k + 3 * v + 2]);
-    wl.motion = {static_cast<WallMotion::Kind>(kind[k]), vel[k], dir[k], freq[k], amp[k], t0[k]};
+    WallMotion& m = wl.motion;
+    m.velocity = vel[k];
+    m.direction = dir[k];
+    m.frequency = freq[k];
+    m.amplitude = amp[k];
+    m.centre = centre[k];
+    m.axis = axis[k];
+    m.angular_speed = spin[k];
+    m.t0 = t0[k];
+    if (tab >= 0) {
+      if (!(table_start[tab] < table_start[tab + 1]))
+        throw IoError(path + ": wall '" + wl.name + "': empty or misordered motion table (damaged file)");
+      for (int row = table_start[tab]; row < table_start[tab + 1]; ++row) {
+        const double* t = &table_rows[4 * row];
+        if (!(row == table_start[tab] ? t[0] == 0 : t[0] > m.table_time.back()))
+          throw IoError(path + ": wall '" + wl.name + "': motion table times do not increase from 0 (damaged file)");
+        m.table_time.push_back(t[0]);
+        m.table_offset.emplace_back(t[1], t[2], t[3]);
+      }
+    }
     const std::vector<Vec3> now = wl.vertices_at(sim.time);
     for (int v = 0; v < nvert[k]; ++v)
       if (now[v] != Vec3(current[12 * k + 3 * v], current[12 * k + 3 * v + 1], current[12 * k + 3 * v + 2]))

@@ -10,7 +10,7 @@
 
 namespace dem {
 
-inline constexpr int kCheckpointSchema = 1;
+inline constexpr int kCheckpointSchema = 2;  // 2: wall motions compose translation, time table, vibration, rotation
 inline constexpr const char* kCheckpointFormat = "dem-checkpoint";
 
 // Where a run-stage run stands, so that --restart continues exactly.

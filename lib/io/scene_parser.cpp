@@ -482,14 +482,33 @@ Region read_region(TableReader& parent, const std::string& key) {
   return g;
 }
 
-WallMotion read_motion(TableReader& r) {
-  WallMotion m;
-  const std::string type = r.choice("type", {"fixed", "translate", "vibrate"});
+void read_motion(TableReader& r, MotionSpec& ms) {
+  using Part = MotionSpec::Part;
+  WallMotion& m = ms.motion;
+  const std::string type = r.choice("type", {"fixed", "translate", "table", "vibrate", "rotate"});
   if (type == "translate") {
-    m.kind = WallMotion::Kind::Translate;
+    ms.part = Part::Translate;
     m.velocity = r.vec3("velocity");
+  } else if (type == "table") {
+    ms.part = Part::Table;
+    const toml::node& tn = r.required("table");
+    const toml::array* rows = tn.as_array();
+    if (!rows || rows->size() < 2) r.fail_at(&tn, "table", "expected at least 2 rows [t, x, y, z] (s, m)");
+    for (const toml::node& row : *rows) {
+      const toml::array* a = row.as_array();
+      if (!a || a->size() != 4) r.fail_at(&row, "table", "expected a row [t, x, y, z]: time since the stage start [s], displacement [m]");
+      double v[4];
+      for (int c = 0; c < 4; ++c) v[c] = r.number_of(*a->get(c), "table", -kInf, kInf, c ? "m" : "s");
+      if (m.table_time.empty() ? v[0] != 0 : !(v[0] > m.table_time.back()))
+        r.fail_at(&row, "table", m.table_time.empty() ? "the first row must be at t = 0 (the stage start)" : "times must increase strictly");
+      m.table_time.push_back(v[0]);
+      m.table_offset.emplace_back(v[1], v[2], v[3]);
+    }
+    // The wall starts where it is: displacements count from the first row.
+    const Vec3 first = m.table_offset.front();
+    for (Vec3& d : m.table_offset) d -= first;
   } else if (type == "vibrate") {
-    m.kind = WallMotion::Kind::Vibrate;
+    ms.part = Part::Vibrate;
     const Vec3 d = r.vec3("direction");
     if (!(d.norm() > 0)) r.fail("direction", "the direction must be a non-zero vector");
     m.direction = d.normalized();
@@ -503,8 +522,16 @@ WallMotion read_motion(TableReader& r) {
       const double w = 2 * M_PI * m.frequency;
       m.amplitude = r.number("acceleration", 0, kInf, "m/s^2", true) / (w * w);
     }
+  } else if (type == "rotate") {
+    ms.part = Part::Rotate;
+    const Vec3 a = r.vec3("axis");
+    if (!(a.norm() > 0)) r.fail("axis", "the axis must be a non-zero vector");
+    m.axis = a.normalized();
+    m.centre = r.vec3("centre");
+    const double rpm = r.number("rpm", -1e6, 1e6, "rev/min");
+    if (rpm == 0) r.fail("rpm", "a rotation needs a non-zero speed (use type = \"fixed\" to stop a wall)");
+    m.angular_speed = rpm * 2 * M_PI / 60;  // [rad/s], sign by the right-hand rule about `axis`
   }
-  return m;
 }
 
 void read_stages(TableReader& top, Scene& sc) {
@@ -544,7 +571,7 @@ void read_stages(TableReader& top, Scene& sc) {
       bool found = false;
       for (const WallSpec& w : sc.walls) found = found || wall_matches(w.name, ms.wall);
       if (!found) mr.fail_at(&wn, "wall", "no wall or wall group of that name");
-      ms.motion = read_motion(mr);
+      read_motion(mr, ms);
       mr.finish();
       s.motions.push_back(ms);
     }

@@ -135,7 +135,6 @@ void compact(const GenerateOptions& o) {
     n.normalize();
     if (n.dot(centroid - v[0]) < 0) n = -n;
     WallMotion m;
-    m.kind = WallMotion::Kind::Translate;
     m.velocity = c.speed * n;
     sim.walls[k].start_motion(m, sim.time);
     moving.push_back(k);
@@ -175,7 +174,6 @@ void compact(const GenerateOptions& o) {
         const int n = contacts[moving[m]];  // a wall that touches nothing approaches at full speed
         const double v = n == 0 ? c.speed : std::clamp(0.2 * err / (n * (k_max * sim.dt + c_max)), -c.speed, c.speed);
         WallMotion mo;
-        mo.kind = WallMotion::Kind::Translate;
         mo.velocity = v * inward[m];
         sim.walls[moving[m]].start_motion(mo, sim.time);
       }

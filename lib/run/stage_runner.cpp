@@ -48,9 +48,9 @@ void apply_actions(Simulation& sim, const StageSpec& stage) {
 
 void start_motions(Simulation& sim, const StageSpec& stage) {
   for (Wall& w : sim.walls) {
-    WallMotion m;  // fixed unless the stage says otherwise; the last matching entry wins
+    WallMotion m;  // fixed unless the stage says otherwise; matching entries compose in file order
     for (const MotionSpec& ms : stage.motions)
-      if (wall_matches(w.name, ms.wall)) m = ms.motion;
+      if (wall_matches(w.name, ms.wall)) ms.apply_to(m);
     w.start_motion(m, sim.time);
   }
 }

@@ -78,9 +78,15 @@ struct ActionSpec {
   bool walls = false;   // Bond: also bond the particles touching walls
 };
 
+// One `[[stage.motion]]` entry: one part of a wall's motion. Entries selecting the same wall
+// compose (a drum rotates and vibrates); a later entry of the same part replaces the earlier one,
+// and `fixed` clears what came before.
 struct MotionSpec {
+  enum class Part { Fixed, Translate, Table, Vibrate, Rotate };
   std::string wall;  // a wall name, or a group prefix ("box" matches "box.zmin", ...)
-  WallMotion motion;
+  Part part = Part::Fixed;
+  WallMotion motion;  // the fields of `part`
+  void apply_to(WallMotion& m) const;
 };
 
 struct StageSpec {

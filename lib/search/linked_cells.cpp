@@ -7,10 +7,13 @@
 
 namespace dem {
 
-void LinkedCells::find_near_pairs(const Particles& p, std::vector<FoundContact>& out, double margin) {
+long LinkedCells::cell_coord(double x, int d) const {
+  return std::clamp(static_cast<long>(std::floor((x - lo_[d]) / edge_)), 0L, dims_[d] - 1);
+}
+
+void LinkedCells::bin(const Particles& p, double margin) {
   const int n = static_cast<int>(p.size());
-  if (n < 2) return;
-  Vec3 lo = p.x[0], hi = p.x[0];
+  Vec3 lo = n ? p.x[0] : Vec3::Zero(), hi = lo;
   double rmax = 0;
   for (int k = 0; k < n; ++k) {
     lo = lo.cwiseMin(p.x[k]);
@@ -19,9 +22,9 @@ void LinkedCells::find_near_pairs(const Particles& p, std::vector<FoundContact>&
   }
   // Cell edge >= 2 Rmax (+ margin) (eq. 3.1); widened if needed so the grid has at most ~2N + 27 cells,
   // which bounds memory when a particle flies far away.
-  double edge = 2 * rmax + margin;
+  double edge = std::max(2 * rmax + margin, 1e-300);
   const Vec3 span = hi - lo;
-  long dims[3];
+  long* dims = dims_;
   for (;;) {
     long total = 1;
     for (int d = 0; d < 3; ++d) {
@@ -31,18 +34,23 @@ void LinkedCells::find_near_pairs(const Particles& p, std::vector<FoundContact>&
     if (total <= 2L * n + 27) break;
     edge *= 1.26;
   }
-  const long ncell = dims[0] * dims[1] * dims[2];
-  head_.assign(ncell, -1);
+  lo_ = lo;
+  edge_ = edge;
+  rmax_ = rmax;
+  head_.assign(dims[0] * dims[1] * dims[2], -1);
   next_.resize(n);
-  auto cell_coord = [&](const Vec3& x, int d) {
-    return std::min(dims[d] - 1, static_cast<long>((x[d] - lo[d]) / edge));
-  };
   // Insert in reverse so each cell lists its particles in increasing slot order.
   for (int k = n - 1; k >= 0; --k) {
-    const long c = (cell_coord(p.x[k], 2) * dims[1] + cell_coord(p.x[k], 1)) * dims[0] + cell_coord(p.x[k], 0);
+    const long c = (cell_coord(p.x[k][2], 2) * dims[1] + cell_coord(p.x[k][1], 1)) * dims[0] + cell_coord(p.x[k][0], 0);
     next_[k] = head_[c];
     head_[c] = k;
   }
+}
+
+void LinkedCells::find_near_pairs(const Particles& p, std::vector<FoundContact>& out, double margin) {
+  bin(p, margin);
+  const long* dims = dims_;
+  const long ncell = dims[0] * dims[1] * dims[2];
   // Half of the neighbour shell: the 13 cells "after" the current one, plus the cell itself.
   static constexpr int kHalf[13][3] = {{1, 0, 0},  {-1, 1, 0}, {0, 1, 0},  {1, 1, 0},   {-1, -1, 1},
                                        {0, -1, 1}, {1, -1, 1}, {-1, 0, 1}, {0, 0, 1},   {1, 0, 1},
@@ -74,6 +82,46 @@ void LinkedCells::find_near_pairs(const Particles& p, std::vector<FoundContact>&
           for (int b = head_[(z * dims[1] + y) * dims[0] + x]; b >= 0; b = next_[b]) test(a, b);
         }
       }
+    }
+  }
+  for (const std::vector<FoundContact>& part : per_thread_) out.insert(out.end(), part.begin(), part.end());
+}
+
+void LinkedCells::find_near_walls(const Particles& p, const std::vector<WallGeometry>& walls, std::vector<FoundContact>& out,
+                                  double margin) {
+  if (p.size() == 0) return;
+  const int threads = omp_get_max_threads();
+  per_thread_.resize(threads);
+  const long nw = static_cast<long>(walls.size());
+  const double grow = rmax_ + margin;
+#pragma omp parallel num_threads(threads)
+  {
+    std::vector<FoundContact>& mine = per_thread_[omp_get_thread_num()];
+    mine.clear();
+#pragma omp for schedule(dynamic, 16)
+    for (long w = 0; w < nw; ++w) {
+      const WallGeometry& g = walls[w];
+      Vec3 blo = g.vertices[0], bhi = g.vertices[0];
+      for (int v = 1; v < g.count; ++v) blo = blo.cwiseMin(g.vertices[v]), bhi = bhi.cwiseMax(g.vertices[v]);
+      blo.array() -= grow;
+      bhi.array() += grow;
+      long c0[3], c1[3];
+      bool outside = false;
+      for (int d = 0; d < 3; ++d) {
+        // Cells past the grid's last one hold nothing beyond it: an element far away is skipped.
+        outside = outside || bhi[d] < lo_[d] || blo[d] > lo_[d] + dims_[d] * edge_;
+        c0[d] = cell_coord(blo[d], d);
+        c1[d] = cell_coord(bhi[d], d);
+      }
+      if (outside) continue;
+      for (long z = c0[2]; z <= c1[2]; ++z)
+        for (long y = c0[1]; y <= c1[1]; ++y)
+          for (long x = c0[0]; x <= c1[0]; ++x)
+            for (int k = head_[(z * dims_[1] + y) * dims_[0] + x]; k >= 0; k = next_[k]) {
+              const double reach = p.radius[k] + margin;
+              if ((closest_point(g, p.x[k]) - p.x[k]).squaredNorm() < reach * reach)
+                mine.push_back({p.id[k], static_cast<Index>(w), k, static_cast<int>(w)});
+            }
     }
   }
   for (const std::vector<FoundContact>& part : per_thread_) out.insert(out.end(), part.begin(), part.end());

@@ -7,6 +7,7 @@
 
 #include "contact/contact_list.hpp"
 #include "state/particles.hpp"
+#include "walls/wall.hpp"
 
 namespace dem {
 
@@ -17,8 +18,21 @@ class LinkedCells {
   // sort it). A margin lets bonded pairs be found while apart (in tension).
   void find_near_pairs(const Particles& p, std::vector<FoundContact>& out, double margin = 0);
 
+  // Appends every (particle, wall element) closer than the radius plus `margin` (closest point of
+  // the element, eq. 2.4-2.5), keyed (id, element index), in no particular order. Each element
+  // visits only the cells its bounding box (grown by the largest radius + margin) overlaps, so a
+  // 10,000-triangle mesh costs what its surface covers, not N x elements. Uses the grid of the
+  // last find_near_pairs call, which must have been made with the same particles.
+  void find_near_walls(const Particles& p, const std::vector<WallGeometry>& walls, std::vector<FoundContact>& out, double margin);
+
  private:
+  void bin(const Particles& p, double margin);  // the grid of cells and HEAD/LIST
+  long cell_coord(double x, int d) const;
+
   std::vector<int> head_, next_;
+  Vec3 lo_ = Vec3::Zero();
+  double edge_ = 0, rmax_ = 0;
+  long dims_[3] = {0, 0, 0};
   std::vector<std::vector<FoundContact>> per_thread_;
 };
 

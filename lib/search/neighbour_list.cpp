@@ -7,7 +7,7 @@
 namespace dem {
 
 bool NeighbourList::needs_rebuild(const Particles& p, const std::vector<WallGeometry>& walls, double margin, double skin) const {
-  if (!valid_ || margin != margin_build_ || skin != skin_build_ || p.size() != x_build_.size() || walls.size() != wall_build_.size())
+  if (!valid_ || margin != margin_build_ || skin != skin_build_ || p.size() != x_build_.size() || 4 * walls.size() != wall_build_.size())
     return true;
   // Two particles approach by at most twice the largest displacement, a particle and a wall by the
   // particle's displacement plus the wall's (a planar polygon moves no further than its vertices).
@@ -21,11 +21,12 @@ bool NeighbourList::needs_rebuild(const Particles& p, const std::vector<WallGeom
   }
   if (!same_ids) return true;
   const double dp = std::sqrt(dp2);
-  double dw = 0;
-  for (std::size_t w = 0; w < walls.size(); ++w) {
-    if (walls[w].vertices.size() != wall_build_[w].size()) return true;
-    for (std::size_t v = 0; v < walls[w].vertices.size(); ++v) dw = std::max(dw, (walls[w].vertices[v] - wall_build_[w][v]).norm());
-  }
+  double dw2 = 0;
+  const long nw = static_cast<long>(walls.size());
+#pragma omp parallel for schedule(static) reduction(max : dw2) if (nw > 1000)
+  for (long w = 0; w < nw; ++w)
+    for (int v = 0; v < walls[w].count; ++v) dw2 = std::max(dw2, (walls[w].vertices[v] - wall_build_[4 * w + v]).squaredNorm());
+  const double dw = std::sqrt(dw2);
   return 2 * dp > skin || dp + dw > skin;
 }
 
@@ -35,24 +36,14 @@ void NeighbourList::build(const Particles& p, const std::vector<WallGeometry>& w
   __gnu_parallel::sort(pairs_.begin(), pairs_.end());  // keys are unique: the same order for any thread count
 
   wall_pairs_.clear();
-  const long n = static_cast<long>(p.size());
-  near_wall_.resize(n);
-  for (std::size_t w = 0; w < walls.size(); ++w) {
-    const WallGeometry& g = walls[w];
-#pragma omp parallel for schedule(static)
-    for (long k = 0; k < n; ++k) {
-      const double reach = p.radius[k] + margin + skin;
-      near_wall_[k] = (closest_point(g, p.x[k]) - p.x[k]).squaredNorm() < reach * reach;
-    }
-    for (long k = 0; k < n; ++k)
-      if (near_wall_[k]) wall_pairs_.push_back({p.id[k], static_cast<Index>(w), static_cast<int>(k), static_cast<int>(w)});
-  }
-  std::sort(wall_pairs_.begin(), wall_pairs_.end());
+  cells_.find_near_walls(p, walls, wall_pairs_, margin + skin);
+  __gnu_parallel::sort(wall_pairs_.begin(), wall_pairs_.end());
 
   x_build_ = p.x;
   id_build_ = p.id;
-  wall_build_.resize(walls.size());
-  for (std::size_t w = 0; w < walls.size(); ++w) wall_build_[w] = walls[w].vertices;
+  wall_build_.assign(4 * walls.size(), Vec3::Zero());
+  for (std::size_t w = 0; w < walls.size(); ++w)
+    for (int v = 0; v < walls[w].count; ++v) wall_build_[4 * w + v] = walls[w].vertices[v];
   margin_build_ = margin;
   skin_build_ = skin;
   valid_ = true;

@@ -30,10 +30,9 @@ class NeighbourList {
 
   LinkedCells cells_;
   std::vector<FoundContact> pairs_, wall_pairs_;
-  std::vector<std::uint8_t> near_wall_;  // working storage of build()
   std::vector<Vec3> x_build_;
   std::vector<Index> id_build_;
-  std::vector<std::vector<Vec3>> wall_build_;
+  std::vector<Vec3> wall_build_;  // every element's vertices at the last build, 4 per element
   double margin_build_ = -1, skin_build_ = -1;
   bool valid_ = false;
   std::int64_t builds_ = 0;

@@ -60,34 +60,67 @@ double pair_forces(const ForceLoopInput& in, ContactList& pc) {
 template <class Normal>
 double wall_forces(const ForceLoopInput& in, ContactList& wc) {
   const Particles& p = in.particles;
-  const long n = static_cast<long>(wc.size());
+  const long runs = static_cast<long>(in.wall_runs.size()) - 1;
   double worst = 0;
-#pragma omp parallel for schedule(static) reduction(max : worst)
-  for (long k = 0; k < n; ++k) {
-    const int i = wc.slot_i[k], w = wc.slot_j[k];
-    const WallGeometry& g = in.geometry[w];
-    Vec3 d;
-    const double d2 = wall_gap2(p, g, i, d);
-    if (d2 >= p.radius[i] * p.radius[i] && !wc.bonded[k]) {
-      wc.active[k] = 0;
-      wc.spring[k] = Vec3::Zero();
-      wc.sum[k] = ContactSum();
-      continue;
+#pragma omp parallel reduction(max : worst)
+  {
+    // Per-thread working storage, grown to the longest run and then kept (no allocation per step).
+    std::vector<Vec3> to_wall;
+    std::vector<std::uint8_t> touching, take;
+    std::vector<int> order;
+#pragma omp for schedule(static)
+    for (long r = 0; r < runs; ++r) {
+      const int first = in.wall_runs[r], n = in.wall_runs[r + 1] - first;
+      const int i = wc.slot_i[first];
+      if (static_cast<int>(to_wall.size()) < n) to_wall.resize(n), touching.resize(n), take.resize(n), order.resize(n);
+      for (int e = 0; e < n; ++e) {
+        const long k = first + e;
+        touching[e] = wall_gap2(p, in.geometry[wc.slot_j[k]], i, to_wall[e]) < p.radius[i] * p.radius[i];
+      }
+      select_wall_contacts(to_wall.data(), touching.data(), n, p.radius[i], take.data(), order.data());
+      for (int e = 0; e < n; ++e) take[e] = take[e] || wc.bonded[first + e];  // a bond holds regardless
+      // A new contact takes over the spring of a contact of this particle lost this step whose
+      // direction is close (within 60 degrees): rolling or sliding from one element onto its
+      // neighbour keeps the tangential force, as on a single plane.
+      for (int e = 0; e < n; ++e) {
+        const long k = first + e;
+        if (!take[e] || wc.active[k]) continue;
+        int from = -1;
+        double best = 0.5;
+        for (int o = 0; o < n; ++o) {
+          const long ko = first + o;
+          if (take[o] || !wc.active[ko] || wc.spring[ko] == Vec3::Zero()) continue;
+          const double cosine = to_wall[o].normalized().dot(to_wall[e].normalized());
+          if (cosine > best) best = cosine, from = o;
+        }
+        if (from >= 0) wc.spring[k] = wc.spring[first + from], wc.spring[first + from] = Vec3::Zero();
+      }
+      for (int e = 0; e < n; ++e) {
+        const long k = first + e;
+        if (!take[e]) {
+          wc.active[k] = 0;
+          wc.spring[k] = Vec3::Zero();
+          wc.sum[k] = ContactSum();
+          continue;
+        }
+        const WallGeometry& g = in.geometry[wc.slot_j[k]];
+        const double dist = to_wall[e].norm();
+        ContactKinematics c;
+        // A centre exactly on the wall has no direction to the contact point: use the plane normal.
+        c.n = dist > 0 ? Vec3(to_wall[e] / dist) : g.normal;
+        c.overlap = p.radius[i] - dist;  // eq. 2.17
+        // eq. 2.18: the velocity of the wall's material at the contact point enters.
+        c.v_rel = g.velocity_of(p.x[i] + to_wall[e]) - p.v[i];
+        c.w_arm = p.radius[i] * p.w[i];
+        c.m_eff = p.mass[i];
+        const ContactForce f = ContactLaw<Normal>::evaluate(in.materials.pair(p.material[i], in.walls[wc.slot_j[k]].material), c,
+                                                            in.dt, wc.spring[k], wc.bonded[k]);
+        wc.active[k] = 1;
+        wc.normal[k] = c.n;
+        wc.sum[k] = {f.on_i, c.n.cross(f.tangential)};
+        worst = std::max(worst, c.overlap / p.radius[i]);
+      }
     }
-    const double dist = std::sqrt(d2);
-    ContactKinematics c;
-    // A centre exactly on the wall has no direction to the contact point: use the plane normal.
-    c.n = dist > 0 ? Vec3(d / dist) : g.normal;
-    c.overlap = p.radius[i] - dist;  // eq. 2.17
-    c.v_rel = g.velocity - p.v[i];   // eq. 2.18: the wall's velocity enters
-    c.w_arm = p.radius[i] * p.w[i];
-    c.m_eff = p.mass[i];
-    const ContactForce f =
-        ContactLaw<Normal>::evaluate(in.materials.pair(p.material[i], in.walls[w].material), c, in.dt, wc.spring[k], wc.bonded[k]);
-    wc.active[k] = 1;
-    wc.normal[k] = c.n;
-    wc.sum[k] = {f.on_i, c.n.cross(f.tangential)};
-    worst = std::max(worst, c.overlap / p.radius[i]);
   }
   return worst;
 }
@@ -98,6 +131,35 @@ double all_forces(const ForceLoopInput& in, ContactList& pairs, ContactList& wal
 }
 
 }  // namespace
+
+void select_wall_contacts(const Vec3* to_wall, const std::uint8_t* touching, int n, double radius, std::uint8_t* take,
+                          int* order) {
+  int m = 0;
+  for (int e = 0; e < n; ++e) {
+    take[e] = 0;
+    if (touching[e]) order[m++] = e;
+  }
+  // Nearest first; ties (the same point seen by two elements) by element order: deterministic.
+  std::sort(order, order + m, [&](int a, int b) {
+    const double da = to_wall[a].squaredNorm(), db = to_wall[b].squaredNorm();
+    return da != db ? da < db : a < b;
+  });
+  // Points within this distance of a tangent plane count as in it: round-off of the closest-point
+  // computation is ~1e-16 of the coordinates; a real concave corner is ~radius in front.
+  const double tol = 1e-9 * radius;
+  for (int a = 0; a < m; ++a) {
+    const int e = order[a];
+    bool in_front = true;
+    for (int b = 0; b < a && in_front; ++b) {
+      const int t = order[b];
+      if (!take[t]) continue;
+      const double dist = to_wall[t].norm();
+      // n_t points from the contact point to the centre: -to_wall / |to_wall|.
+      in_front = dist == 0 || -(to_wall[e] - to_wall[t]).dot(to_wall[t]) > tol * dist;
+    }
+    take[e] = in_front;
+  }
+}
 
 ForceVariant choose_force_variant(const Simulation& sim) {
   if (!sim.has_bonds()) return ForceVariant::Cundall;

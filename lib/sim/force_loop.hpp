@@ -1,6 +1,7 @@
 #pragma once
 // The force loop: forces of every contact this step, one loop per law combination (STYLE 3),
 // chosen once per step outside the loops so that a scene pays only for what it uses.
+#include <cstdint>
 #include <vector>
 
 #include "contact/contact_list.hpp"
@@ -18,6 +19,7 @@ struct ForceLoopInput {
   const MaterialTable& materials;
   const std::vector<Wall>& walls;
   const std::vector<WallGeometry>& geometry;  // the walls now
+  const std::vector<int>& wall_runs;  // where each particle's wall candidates start (+ the end)
   double dt;
 };
 
@@ -36,6 +38,17 @@ inline double wall_gap2(const Particles& p, const WallGeometry& g, int i, Vec3& 
   to_wall = closest_point(g, p.x[i]) - p.x[i];
   return to_wall.squaredNorm();  // touching when < radius^2
 }
+
+// Which wall candidates of one particle are contacts. Where mesh elements meet, the same touch is
+// seen by several elements (a face and its neighbour's edge, or two faces at their common edge):
+// taken nearest first, a touch counts only if its contact point lies in front of the tangent plane
+// of every touch already taken (c_k - c_j) . n_j > tol, n_j from c_j towards the centre. On a flat
+// or convex surface the others lie in that plane or behind it, so the sphere feels one contact,
+// as on a single plane; in a concave corner (a box's floor and side) both count.
+// `to_wall[e]` = closest point - centre for candidate e of the run, `touching[e]` whether it
+// touches; on return `take[e]` says which are contacts. `order` is working storage.
+void select_wall_contacts(const Vec3* to_wall, const std::uint8_t* touching, int n, double radius, std::uint8_t* take,
+                          int* order);
 
 // For every candidate of `pairs` and `walls`: decides whether it is a contact (`active`: touching,
 // or holding by a bond), and if so fills .normal and .sum and updates its history; a candidate

@@ -12,7 +12,7 @@ namespace dem {
 
 void Simulation::advance() {
   find_contacts();
-  const ForceLoopInput in{particles, materials, walls, wall_geometry_, dt};
+  const ForceLoopInput in{particles, materials, walls, wall_geometry_, wall_runs_, dt};
   const double worst_overlap = compute_contact_forces(in, choose_force_variant(*this), pairs_, walls_);
   contacts_modified();
   if (worst_overlap > params.max_overlap) report_overlap(worst_overlap);
@@ -106,13 +106,9 @@ void Simulation::count_bonds() {
 
 void Simulation::update_wall_geometry() {
   wall_geometry_.resize(walls.size());
-  for (std::size_t w = 0; w < walls.size(); ++w) {
-    WallGeometry& g = wall_geometry_[w];
-    g.vertices = walls[w].vertices_at(time);
-    g.normal = (g.vertices[1] - g.vertices[0]).cross(g.vertices[2] - g.vertices[0]).normalized();
-    // At t^{n-1/2}, the time of the particles' velocities it is compared with (eq. 2.18).
-    g.velocity = walls[w].motion.velocity_at(time - 0.5 * dt);
-  }
+  const long nw = static_cast<long>(walls.size());
+#pragma omp parallel for schedule(static) if (nw > 1000)
+  for (long w = 0; w < nw; ++w) place_wall(walls[w], time, dt, wall_geometry_[w]);
 }
 
 double Simulation::skin() const {
@@ -151,6 +147,12 @@ void Simulation::index_contacts_per_particle() {
     csr_entry_[csr_fill_[pairs_.slot_j[k]]++] = static_cast<int>(2 * k + 1);
   }
   for (long k = 0; k < nwc; ++k) csr_entry_[csr_fill_[walls_.slot_i[k]]++] = static_cast<int>(2 * (npc + k));
+  // Wall candidates are sorted by particle id: each particle's form one run, taken together by the
+  // wall force loop (where mesh elements meet, one touch must count once).
+  wall_runs_.clear();
+  for (long k = 0; k < nwc; ++k)
+    if (k == 0 || walls_.key_i[k] != walls_.key_i[k - 1]) wall_runs_.push_back(static_cast<int>(k));
+  wall_runs_.push_back(static_cast<int>(nwc));
 }
 
 void Simulation::sum_forces() {

@@ -80,6 +80,7 @@ class Simulation {
   std::vector<Vec3> force_, torque_;
   // Per-particle lists of candidate entries in a fixed order, rebuilt with the neighbour list.
   std::vector<int> csr_start_, csr_entry_, csr_fill_;
+  std::vector<int> wall_runs_;  // first wall candidate of each particle, then the end
 };
 
 }  // namespace dem

@@ -6,33 +6,61 @@
 
 namespace dem {
 
+bool WallMotion::moves() const {
+  return velocity != Vec3::Zero() || !table_time.empty() || amplitude != 0 || angular_speed != 0;
+}
+
+namespace {
+// The table segment holding s: the last k with table_time[k] <= s (0 before the table).
+std::size_t table_segment(const std::vector<double>& time, double s) {
+  const auto it = std::upper_bound(time.begin(), time.end(), s);
+  return it == time.begin() ? 0 : static_cast<std::size_t>(it - time.begin()) - 1;
+}
+}  // namespace
+
 Vec3 WallMotion::offset(double t) const {
   const double s = t - t0;
-  switch (kind) {
-    case Kind::Fixed: return Vec3::Zero();
-    case Kind::Translate: return velocity * s;
-    case Kind::Vibrate: return direction * (amplitude * std::sin(2 * std::numbers::pi * frequency * s));
+  Vec3 d = velocity * s;
+  if (!table_time.empty() && s > 0) {
+    const std::size_t k = table_segment(table_time, s);
+    if (k + 1 >= table_time.size()) {
+      d += table_offset.back();  // held after the last row
+    } else {
+      const double u = (s - table_time[k]) / (table_time[k + 1] - table_time[k]);
+      d += table_offset[k] + u * (table_offset[k + 1] - table_offset[k]);
+    }
   }
-  return Vec3::Zero();
+  if (amplitude != 0) d += direction * (amplitude * std::sin(2 * std::numbers::pi * frequency * s));
+  return d;
 }
 
 Vec3 WallMotion::velocity_at(double t) const {
   const double s = t - t0;
-  switch (kind) {
-    case Kind::Fixed: return Vec3::Zero();
-    case Kind::Translate: return velocity;
-    case Kind::Vibrate: {
-      const double om = 2 * std::numbers::pi * frequency;
-      return direction * (amplitude * om * std::cos(om * s));
-    }
+  Vec3 v = velocity;
+  if (!table_time.empty() && s >= 0) {
+    const std::size_t k = table_segment(table_time, s);
+    if (k + 1 < table_time.size()) v += (table_offset[k + 1] - table_offset[k]) / (table_time[k + 1] - table_time[k]);
   }
-  return Vec3::Zero();
+  if (amplitude != 0) {
+    const double om = 2 * std::numbers::pi * frequency;
+    v += direction * (amplitude * om * std::cos(om * s));
+  }
+  return v;
+}
+
+Eigen::Matrix3d WallMotion::rotation(double t) const {
+  if (angular_speed == 0) return Eigen::Matrix3d::Identity();
+  return Eigen::AngleAxisd(angular_speed * (t - t0), axis).toRotationMatrix();
+}
+
+Vec3 WallMotion::place(const Vec3& x0, double t) const {
+  if (angular_speed == 0) return x0 + offset(t);
+  return centre + offset(t) + rotation(t) * (x0 - centre);
 }
 
 std::vector<Vec3> Wall::vertices_at(double t) const {
-  const Vec3 d = motion.offset(t);
   std::vector<Vec3> out(base);
-  for (Vec3& v : out) v += d;
+  for (Vec3& v : out) v = motion.place(v, t);
   return out;
 }
 
@@ -40,6 +68,23 @@ void Wall::start_motion(const WallMotion& m, double t) {
   base = vertices_at(t);
   motion = m;
   motion.t0 = t;
+}
+
+void place_wall(const Wall& w, double t, double dt, WallGeometry& g) {
+  const WallMotion& m = w.motion;
+  g.count = static_cast<int>(w.base.size());
+  const Vec3 d = m.offset(t);
+  if (m.rotates()) {
+    const Eigen::Matrix3d r = m.rotation(t);
+    for (int v = 0; v < g.count; ++v) g.vertices[v] = m.centre + d + r * (w.base[v] - m.centre);
+  } else {
+    for (int v = 0; v < g.count; ++v) g.vertices[v] = w.base[v] + d;
+  }
+  g.normal = (g.vertices[1] - g.vertices[0]).cross(g.vertices[2] - g.vertices[0]).normalized();
+  // At t^{n-1/2}, the time of the particles' velocities it is compared with (eq. 2.18).
+  g.velocity = m.velocity_at(t - 0.5 * dt);
+  g.spin = m.angular_speed * m.axis;
+  g.centre = m.centre + d;
 }
 
 namespace {
@@ -72,7 +117,7 @@ Vec3 closest_point_on_polygon(const Vec3* v, int n, const Vec3& nrm, const Vec3&
 }
 
 Vec3 closest_point(const WallGeometry& g, const Vec3& p) {
-  return closest_point_on_polygon(g.vertices.data(), static_cast<int>(g.vertices.size()), g.normal, p);
+  return closest_point_on_polygon(g.vertices.data(), g.count, g.normal, p);
 }
 
 std::vector<Vec3> box_face(const Vec3& lo, const Vec3& hi, int axis, bool max_side) {

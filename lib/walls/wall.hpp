@@ -1,6 +1,8 @@
 #pragma once
-// Rigid planar walls: convex triangles or quadrilaterals (SPEC §3). Motion is prescribed, not
-// integrated, so a wall's position is a closed-form function of time (exact on restart).
+// Rigid walls made of convex planar elements: triangles or quadrilaterals (SPEC §3). A mesh wall
+// (cylinder, cone, STL, ...) is many elements sharing one motion. Motion is prescribed, not
+// integrated, so an element's position is a closed-form function of time (exact on restart).
+#include <array>
 #include <string>
 #include <vector>
 
@@ -8,17 +10,31 @@
 
 namespace dem {
 
+// A rigid motion from time t0, the composition of a translation (constant velocity and/or a time
+// table of displacements), a harmonic vibration and a rotation about an axis:
+//   x(t) = c + d(s) + R(ω s)·(x0 − c),   s = t − t0,
+//   d(s) = u·s + table(s) + e·A·sin(2π f s).
+// The rotation axis (through c, direction a) travels with the translation and the vibration, so a
+// drum can rotate and vibrate at once. The velocity of the wall material at a point x is
+//   v(x) = d'(s) + ω a × (x − c − d(s))   (eq. 2.18 uses it at the contact point).
 struct WallMotion {
-  enum class Kind { Fixed, Translate, Vibrate };
-  Kind kind = Kind::Fixed;
-  Vec3 velocity = Vec3::Zero();   // Translate: constant velocity [m/s]
-  Vec3 direction = Vec3::UnitZ(); // Vibrate: unit direction
-  double frequency = 0;           // Vibrate: [Hz]
-  double amplitude = 0;           // Vibrate: displacement amplitude [m]
-  double t0 = 0;                  // time at which the motion starts [s]
+  Vec3 velocity = Vec3::Zero();      // translation: constant velocity u [m/s]
+  std::vector<double> table_time;    // translation table: times since t0 [s], increasing from 0
+  std::vector<Vec3> table_offset;    // displacements at those times [m] (linear in between, held after)
+  Vec3 direction = Vec3::UnitZ();    // vibration: unit direction e
+  double frequency = 0;              // vibration: f [Hz]
+  double amplitude = 0;              // vibration: displacement amplitude A [m]
+  Vec3 centre = Vec3::Zero();        // rotation: a point c on the axis [m]
+  Vec3 axis = Vec3::UnitZ();         // rotation: unit axis a (right-hand rule)
+  double angular_speed = 0;          // rotation: ω [rad/s]
+  double t0 = 0;                     // time at which the motion starts [s]
 
-  Vec3 offset(double t) const;        // displacement from the base position at time t
-  Vec3 velocity_at(double t) const;   // d offset / dt
+  bool moves() const;
+  bool rotates() const { return angular_speed != 0; }
+  Vec3 offset(double t) const;                 // d(s): the displacement of the axis point c
+  Vec3 velocity_at(double t) const;            // d'(s)
+  Eigen::Matrix3d rotation(double t) const;    // R(ω s)
+  Vec3 place(const Vec3& x0, double t) const;  // x(t) of the material point at x0 when the motion started
 };
 
 struct Wall {
@@ -28,16 +44,24 @@ struct Wall {
   WallMotion motion;
 
   std::vector<Vec3> vertices_at(double t) const;
-  // Bake the current offset into the base and start a new motion at time t (stage change).
+  // Bake the current position into the base and start a new motion at time t (stage change).
   void start_motion(const WallMotion& m, double t);
 };
 
-// A wall's current vertices, plane normal and velocity, computed once per step.
+// An element's current vertices, plane normal and velocity field, computed once per step without
+// allocation (the force loop reads it).
 struct WallGeometry {
-  std::vector<Vec3> vertices;
-  Vec3 normal;
-  Vec3 velocity;  // at t^{n-1/2}, like the particles' velocities
+  std::array<Vec3, 4> vertices;
+  int count = 0;               // 3 or 4 vertices
+  Vec3 normal = Vec3::UnitZ();
+  Vec3 velocity = Vec3::Zero();  // of the axis point, at t^{n-1/2} like the particles' velocities
+  Vec3 spin = Vec3::Zero();      // ω a [rad/s]
+  Vec3 centre = Vec3::Zero();    // the axis point c + d now [m]
+  Vec3 velocity_of(const Vec3& x) const { return velocity + spin.cross(x - centre); }
 };
+
+// Fills g with wall w at time t; velocities at t - dt/2 (the particles' half step).
+void place_wall(const Wall& w, double t, double dt, WallGeometry& g);
 
 // Closest point of a wall's current polygon to p (the overload below, on its geometry).
 Vec3 closest_point(const WallGeometry& g, const Vec3& p);
