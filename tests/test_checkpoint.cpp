@@ -30,9 +30,15 @@ class CheckpointTest : public ::testing::Test {
     m.name = "glass";
     sim_.materials = MaterialTable({m, Material{"steel", 7800, 2e5, 1e5, 20, 0.4, 0.6, NormalLaw::Cundall}}, {});
     sim_.walls.push_back(Wall{"floor", 1, {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0)}, {}});
-    WallMotion vib;
+    WallMotion vib;  // every part of a motion at once: it must come back exactly
     vib.frequency = 20;
     vib.amplitude = 1e-3;
+    vib.velocity = Vec3(0, 0, 0.01);
+    vib.table_time = {0, 0.01, 0.5};
+    vib.table_offset = {Vec3::Zero(), Vec3(0.001, 0, 0), Vec3(0.001, 0.002, 0)};
+    vib.centre = Vec3(0.5, 0.5, 0);
+    vib.axis = Vec3(0, 0, 1);
+    vib.angular_speed = 3;
     sim_.walls[0].start_motion(vib, 0.0);
     GenerationSpec g;
     g.box_min = Vec3(0, 0, 0);
@@ -104,6 +110,14 @@ TEST_F(CheckpointTest, RoundTripIsExact) {
   EXPECT_EQ(s.step, sim_.step);
   EXPECT_EQ(s.dt, sim_.dt);
   EXPECT_EQ(s.walls[0].vertices_at(s.time), sim_.walls[0].vertices_at(sim_.time));
+  const WallMotion &a = s.walls[0].motion, &b = sim_.walls[0].motion;
+  EXPECT_EQ(a.table_time, b.table_time);
+  EXPECT_EQ(a.table_offset, b.table_offset);
+  EXPECT_EQ(a.velocity, b.velocity);
+  EXPECT_EQ(a.centre, b.centre);
+  EXPECT_EQ(a.axis, b.axis);
+  EXPECT_EQ(a.angular_speed, b.angular_speed);
+  EXPECT_EQ(a.t0, b.t0);
   EXPECT_EQ(s.materials.materials()[1].kt, 1e5);
   EXPECT_EQ(m.run.stage, "shake");
   EXPECT_EQ(m.run.frame_times, meta_.run.frame_times);

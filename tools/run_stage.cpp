@@ -15,6 +15,9 @@ int main(int argc, char** argv) {
   app.add_option("--checkpoint-every", o.checkpoint_every, "steps between periodic checkpoints (OUT with .restart.h5)")
       ->check(CLI::NonNegativeNumber);
   app.add_flag("--restart", o.restart, "resume from the periodic checkpoint if one exists");
+  app.add_option("--wall-forces", o.wall_forces, "per-wall force and torque time series (CSV)");
+  app.add_option("--wall-forces-every", o.wall_forces_every, "steps between rows of --wall-forces (default 100)")
+      ->check(CLI::PositiveNumber);
   app.add_flag("--quiet", o.quiet, "no progress output");
   dem::add_common_options(app, threads);
   return dem::run_tool(app, argc, argv, threads, [&] { dem::run_stage(o); });

@@ -575,6 +575,39 @@ void read_stages(TableReader& top, Scene& sc) {
       mr.finish();
       s.motions.push_back(ms);
     }
+    const auto servos = r.tables("servo");
+    for (std::size_t m = 0; m < servos.size(); ++m) {
+      TableReader sr(*servos[m], top.file(), r.name(indexed("servo", m)));
+      ServoSpec sv;
+      const toml::node& wn = sr.required("wall");
+      sv.wall = sr.string_of(wn, "wall");
+      bool found = false;
+      for (const WallSpec& w : sc.walls) found = found || wall_matches(w.name, sv.wall);
+      if (!found) sr.fail_at(&wn, "wall", "no wall or wall group of that name");
+      for (const WallSpec& w : sc.walls) {
+        if (!wall_matches(w.name, sv.wall)) continue;
+        WallMotion m;
+        for (const MotionSpec& ms : s.motions)
+          if (wall_matches(w.name, ms.wall)) ms.apply_to(m);
+        if (m.moves())
+          sr.fail_at(&wn, "wall", "wall \"" + w.name + "\" also moves by [[stage.motion]]: a servo wall only translates under its servo " +
+                                      "(add a motion of type \"fixed\" for it after the others)");
+      }
+      for (const ServoSpec& o : s.servos)
+        for (const WallSpec& w : sc.walls)
+          if (wall_matches(w.name, sv.wall) && wall_matches(w.name, o.wall))
+            sr.fail_at(&wn, "wall", "wall \"" + w.name + "\" is already in servo \"" + o.wall + "\"");
+      sv.target_stress = sr.number("target_stress", 0, kInf, "Pa", true);
+      sv.max_speed = sr.number("max_speed", 0, kInf, "m/s", true);
+      sv.gain = sr.number_or("gain", sv.gain, 0, 1, "(dimensionless)", true);
+      if (sr.has("direction")) {
+        const Vec3 d = sr.vec3("direction");
+        if (!(d.norm() > 0)) sr.fail("direction", "the direction must be a non-zero vector");
+        sv.direction = d.normalized();
+      }
+      sr.finish();
+      s.servos.push_back(sv);
+    }
     r.finish();
     sc.stages.push_back(std::move(s));
   }

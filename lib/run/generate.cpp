@@ -15,6 +15,7 @@
 #include "run/progress.hpp"
 #include "run/settle.hpp"
 #include "run/setup.hpp"
+#include "walls/servo.hpp"
 
 namespace dem {
 
@@ -117,73 +118,48 @@ void compact(const GenerateOptions& o) {
   Simulation sim = load_under_scene(o.in, scene, WallPositions::FromCheckpoint);
   sim.dt = choose_time_step(sim, scene.simulation);
 
-  // Each named wall moves along its normal towards the particles' centroid.
-  Vec3 centroid = Vec3::Zero();
-  for (const Vec3& x : sim.particles.x) centroid += x;
-  centroid /= std::max<double>(1, sim.particles.size());
-  std::vector<std::size_t> moving;
-  std::vector<Vec3> inward;
-  std::vector<double> area;
+  // Each named wall moves on its own along its normal towards the particles' centroid.
+  std::vector<ServoGroup> servos;
+  const Vec3 centroid = particle_centroid(sim);
   for (std::size_t k = 0; k < sim.walls.size(); ++k) {
     bool match = false;
     for (const std::string& name : c.walls) match = match || wall_matches(sim.walls[k].name, name);
     if (!match) continue;
-    const std::vector<Vec3> v = sim.walls[k].vertices_at(sim.time);
-    Vec3 n = (v[1] - v[0]).cross(v[2] - v[0]);
-    double a = 0.5 * n.norm();
-    if (v.size() == 4) a += 0.5 * (v[2] - v[0]).cross(v[3] - v[0]).norm();
-    n.normalize();
-    if (n.dot(centroid - v[0]) < 0) n = -n;
+    // The wall alone, not the group its name starts.
+    ServoGroup g = servo_group({sim.walls[k]}, sim.time, sim.walls[k].name, centroid);
+    g.elements = {k};
+    g.target = c.target_stress;
+    g.max_speed = c.speed;
     WallMotion m;
-    m.velocity = c.speed * n;
+    m.velocity = c.speed * g.inward;
     sim.walls[k].start_motion(m, sim.time);
-    moving.push_back(k);
-    inward.push_back(n);
-    area.push_back(a);
+    servos.push_back(g);
   }
-  // Mean normal stress on moving wall m, and the number of contacts it carries.
-  auto wall_stress = [&](std::size_t m, const std::vector<Vec3>& f) { return -f[moving[m]].dot(inward[m]) / area[m]; };
   auto stress = [&]() {
     const std::vector<Vec3> f = sim.wall_forces();
     double s = 0;
-    for (std::size_t m = 0; m < moving.size(); ++m) s += wall_stress(m, f);
-    return s / moving.size();
+    for (const ServoGroup& g : servos) s += g.stress(f);
+    return s / servos.size();
   };
-  const double k_max = sim.materials.max_stiffness();
-  double m_max = 0, gamma_max = 0;
-  for (double m : sim.particles.mass) m_max = std::max(m_max, m);
-  for (std::size_t a = 0; a < sim.materials.size(); ++a)
-    for (std::size_t b = 0; b < sim.materials.size(); ++b) gamma_max = std::max(gamma_max, sim.materials.pair(a, b).gamma_n);
-  const double c_max = 2 * gamma_max * std::sqrt(m_max * k_max);  // eq. 2.27-2.28, wall: m* = m_i
+  double k_max = 0, c_max = 0;
+  servo_constants(sim, k_max, c_max);
   const std::int64_t max_steps = static_cast<std::int64_t>(std::ceil(c.max_time / sim.dt));
   const std::int64_t check = std::max<std::int64_t>(1, std::llround(c.settle.check_every / sim.dt));
   Progress progress("compact", max_steps, o.quiet);
   std::int64_t steps = 0;
   bool done = false;
   if (c.target_stress > 0) {
-    // Stress servo: each wall moves at v = 0.2 (F_target - F) / (K_wall dt + C_wall), at most
-    // `speed`. A velocity change dv changes the wall force at once by C_wall dv (dashpots) and by
-    // K_wall v dt per step (springs), with K_wall = n k_max and C_wall = n c_max over the wall's n
-    // contacts; this gain corrects about 20 % of the force error per step without chattering.
-    // Done when every wall is within 2 % of the target and the bed is at rest (settle criterion).
+    // Stress servo (walls/servo.hpp). Done when every wall is within 2 % of the target and the bed
+    // is at rest (settle criterion).
     while (steps < max_steps && !done) {
-      const std::vector<Vec3> f = sim.wall_forces();
-      const std::vector<int> contacts = sim.wall_contact_counts();
-      for (std::size_t m = 0; m < moving.size(); ++m) {
-        const double err = (c.target_stress - wall_stress(m, f)) * area[m];
-        const int n = contacts[moving[m]];  // a wall that touches nothing approaches at full speed
-        const double v = n == 0 ? c.speed : std::clamp(0.2 * err / (n * (k_max * sim.dt + c_max)), -c.speed, c.speed);
-        WallMotion mo;
-        mo.velocity = v * inward[m];
-        sim.walls[moving[m]].start_motion(mo, sim.time);
-      }
+      drive_servos(sim, servos, k_max, c_max);
       sim.advance();
       ++steps;
       progress.update(steps, sim.time);
       if (steps % check != 0) continue;
       const std::vector<Vec3> now = sim.wall_forces();
       bool within = true;
-      for (std::size_t m = 0; m < moving.size(); ++m) within = within && std::abs(wall_stress(m, now) / c.target_stress - 1) <= 0.02;
+      for (const ServoGroup& g : servos) within = within && std::abs(g.stress(now) / c.target_stress - 1) <= 0.02;
       done = within && kinetic_ratio(sim) < c.settle.ke_ratio;
     }
   } else {
@@ -202,7 +178,7 @@ void compact(const GenerateOptions& o) {
       << " Pa, porosity " << porosity(sim) << "); raise max_time or speed, or check the target";
     throw InputError(m.str());
   }
-  for (std::size_t k : moving) sim.walls[k].start_motion(WallMotion{}, sim.time);
+  for (const ServoGroup& g : servos) sim.walls[g.elements[0]].start_motion(WallMotion{}, sim.time);
   SettleResult s;
   if (c.target_porosity > 0) s = settle(sim, c.settle, "compact relax", o.quiet);
   else s = {steps, kinetic_ratio(sim), true};

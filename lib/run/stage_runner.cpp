@@ -13,6 +13,8 @@
 #include "run/frames.hpp"
 #include "run/progress.hpp"
 #include "run/setup.hpp"
+#include "run/wall_log.hpp"
+#include "walls/servo.hpp"
 
 namespace dem {
 
@@ -55,6 +57,23 @@ void start_motions(Simulation& sim, const StageSpec& stage) {
   }
 }
 
+// The stage's servo groups, from the scene's walls as given (not their current positions), so that
+// a resumed run computes the same directions and areas to the bit; servo walls only translate,
+// which changes neither.
+std::vector<ServoGroup> stage_servos(const Simulation& sim, const Scene& scene, const StageSpec& stage) {
+  std::vector<Wall> as_given;
+  for (const WallSpec& w : scene.walls) as_given.push_back(Wall{w.name, w.material, w.vertices, {}});
+  std::vector<ServoGroup> groups;
+  for (const ServoSpec& s : stage.servos) {
+    ServoGroup g = servo_group(as_given, 0, s.wall, particle_centroid(sim), s.direction ? &*s.direction : nullptr);
+    g.target = s.target_stress;
+    g.max_speed = s.max_speed;
+    g.gain = s.gain;
+    groups.push_back(g);
+  }
+  return groups;
+}
+
 }  // namespace
 
 void run_stage(const StageOptions& o) {
@@ -92,6 +111,11 @@ void run_stage(const StageOptions& o) {
   meta.scene_text = scene.text;
   RunInfo& run = meta.run;
 
+  const std::vector<ServoGroup> servos = stage_servos(sim, scene, *stage);
+  double k_max = 0, c_max = 0;
+  servo_constants(sim, k_max, c_max);
+  WallLog wall_log(o.wall_forces, sim.walls, o.wall_forces_every, sim.step > run.stage_start_step ? sim.step : -1);
+
   FrameWriter frames(o.vtk_dir, stage->name);
   const std::int64_t interval =
       stage->output_every > 0 ? std::max<std::int64_t>(1, std::llround(stage->output_every / sim.dt)) : run.stage_steps;
@@ -111,13 +135,28 @@ void run_stage(const StageOptions& o) {
   const std::int64_t end = run.stage_start_step + run.stage_steps;
   while (sim.step < end) {
     sim.advance();
+    // Servo speeds for the next step from this step's forces: the periodic checkpoint holds them as
+    // the walls' motion, so a resumed run continues exactly.
+    if (!servos.empty()) drive_servos(sim, servos, k_max, c_max);
     maybe_frame();
     const std::int64_t done = sim.step - run.stage_start_step;
+    wall_log.record(sim, done, sim.step == end);
     progress.update(done, sim.time);
     if (o.checkpoint_every > 0 && done % o.checkpoint_every == 0 && sim.step < end) write_checkpoint(restart_file, sim, meta);
   }
   progress.finish(sim.step - run.stage_start_step, sim.time);
+  if (!servos.empty()) {
+    // The servo walls stop where they are; report what they hold.
+    const std::vector<Vec3> f = sim.wall_forces();
+    for (std::size_t k = 0; k < servos.size(); ++k) {
+      for (std::size_t e : servos[k].elements) sim.walls[e].start_motion(WallMotion{}, sim.time);
+      if (!o.quiet)
+        std::cerr << "run-stage: servo " << stage->servos[k].wall << " holds " << servos[k].stress(f) << " Pa (target "
+                  << servos[k].target << " Pa)\n";
+    }
+  }
   write_checkpoint(o.out, sim, meta);
+  wall_log.finish();
   std::remove(restart_file.c_str());
 }
 

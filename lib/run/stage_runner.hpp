@@ -14,6 +14,8 @@ struct StageOptions {
   std::string vtk_dir;               // VTK frames and .pvd series; empty = none
   std::int64_t checkpoint_every = 0; // steps between periodic checkpoints; 0 = none
   bool restart = false;              // resume from the periodic checkpoint if there is one
+  std::string wall_forces;           // per-wall force and torque CSV; empty = none
+  std::int64_t wall_forces_every = 100;  // steps between its rows
   bool quiet = false;
 };
 

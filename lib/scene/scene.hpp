@@ -89,12 +89,22 @@ struct MotionSpec {
   void apply_to(WallMotion& m) const;
 };
 
+// `[[stage.servo]]`: a wall group translating to hold a target normal stress (walls/servo.hpp).
+struct ServoSpec {
+  std::string wall;                // wall or group name
+  double target_stress = 0;        // [Pa], compression positive
+  double max_speed = 0;            // [m/s]
+  double gain = 0.2;               // fraction of the force error corrected per step
+  std::optional<Vec3> direction;   // direction of compression; default: the group's normal towards the particles
+};
+
 struct StageSpec {
   std::string name;
   double duration = 0;      // [s]
   double output_every = 0;  // VTK frame cadence [s]; 0 = first and last frame only
   std::vector<ActionSpec> actions;  // applied in order at the start of the stage
   std::vector<MotionSpec> motions;  // wall motions during the stage (others stay fixed)
+  std::vector<ServoSpec> servos;    // servo-controlled wall groups
 };
 
 struct Scene {

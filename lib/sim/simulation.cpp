@@ -237,4 +237,18 @@ std::vector<int> Simulation::wall_contact_counts() const {
   return n;
 }
 
+std::vector<WallLoad> Simulation::wall_loads() const {
+  std::vector<WallLoad> load(walls.size());
+  for (std::size_t k = 0; k < walls_.size(); ++k) {
+    if (!walls_.active[k]) continue;
+    WallLoad& l = load[walls_.key_j[k]];
+    const Vec3 f = -walls_.force(k);
+    const Vec3 c = closest_point(wall_geometry_[walls_.slot_j[k]], particles.x[walls_.slot_i[k]]);
+    l.force += f;
+    l.torque += c.cross(f);
+    ++l.contacts;
+  }
+  return load;
+}
+
 }  // namespace dem

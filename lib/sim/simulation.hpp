@@ -21,6 +21,13 @@ struct SimParams {
                                      // the contacts found do not depend on it
 };
 
+// What the particles exert on one wall element this step.
+struct WallLoad {
+  Vec3 force = Vec3::Zero();   // [N]
+  Vec3 torque = Vec3::Zero();  // about the origin of coordinates [N m]
+  int contacts = 0;
+};
+
 class Simulation {
  public:
   Particles particles;
@@ -57,6 +64,8 @@ class Simulation {
   double kinetic_energy() const;  // translational + rotational [J]
   std::vector<Vec3> wall_forces() const;  // force on each wall this step [N]
   std::vector<int> wall_contact_counts() const;  // contacts on each wall this step
+  // Force, torque about the origin (contact point x force) and contacts per wall element.
+  std::vector<WallLoad> wall_loads() const;
   const std::vector<WallGeometry>& wall_geometry() const { return wall_geometry_; }
 
  private:

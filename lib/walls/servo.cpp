@@ -1,0 +1,78 @@
+#include "walls/servo.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.hpp"
+#include "scene/scene.hpp"
+#include "sim/simulation.hpp"
+
+namespace dem {
+
+double polygon_area(const std::vector<Vec3>& v) {
+  Vec3 twice = Vec3::Zero();
+  for (std::size_t k = 1; k + 1 < v.size(); ++k) twice += (v[k] - v[0]).cross(v[k + 1] - v[0]);
+  return 0.5 * twice.norm();
+}
+
+double ServoGroup::stress(const std::vector<Vec3>& element_forces) const {
+  double f = 0;
+  for (std::size_t e : elements) f -= element_forces[e].dot(inward);
+  return f / area;
+}
+
+double ServoGroup::speed(const std::vector<Vec3>& element_forces, const std::vector<int>& element_contacts, double dt,
+                         double k_max, double c_max) const {
+  int n = 0;
+  for (std::size_t e : elements) n += element_contacts[e];
+  if (n == 0) return max_speed;
+  const double error = (target - stress(element_forces)) * area;  // [N]
+  return std::clamp(gain * error / (n * (k_max * dt + c_max)), -max_speed, max_speed);
+}
+
+Vec3 particle_centroid(const Simulation& sim) {
+  Vec3 c = Vec3::Zero();
+  for (const Vec3& x : sim.particles.x) c += x;
+  return c / std::max<double>(1, sim.particles.size());
+}
+
+ServoGroup servo_group(const std::vector<Wall>& walls, double t, const std::string& pattern, const Vec3& towards,
+                       const Vec3* direction) {
+  ServoGroup g;
+  Vec3 normal = Vec3::Zero();
+  for (std::size_t k = 0; k < walls.size(); ++k) {
+    if (!wall_matches(walls[k].name, pattern)) continue;
+    const std::vector<Vec3> v = walls[k].vertices_at(t);
+    Vec3 n = (v[1] - v[0]).cross(v[2] - v[0]).normalized();
+    if (n.dot(towards - v[0]) < 0) n = -n;  // facing the particles
+    const double a = polygon_area(v);
+    normal += a * n;
+    g.area += a;
+    g.elements.push_back(k);
+  }
+  if (!direction && !(normal.norm() > 0.5 * g.area))
+    throw InputError("servo wall \"" + pattern + "\": its elements do not face one way; give the servo a direction");
+  g.inward = direction ? direction->normalized() : normal.normalized();
+  return g;
+}
+
+void servo_constants(const Simulation& sim, double& k_max, double& c_max) {
+  k_max = sim.materials.max_stiffness();
+  double m_max = 0, gamma_max = 0;
+  for (double m : sim.particles.mass) m_max = std::max(m_max, m);
+  for (std::size_t a = 0; a < sim.materials.size(); ++a)
+    for (std::size_t b = 0; b < sim.materials.size(); ++b) gamma_max = std::max(gamma_max, sim.materials.pair(a, b).gamma_n);
+  c_max = 2 * gamma_max * std::sqrt(m_max * k_max);  // eq. 2.27-2.28, wall: m* = m_i
+}
+
+void drive_servos(Simulation& sim, const std::vector<ServoGroup>& groups, double k_max, double c_max) {
+  const std::vector<Vec3> f = sim.wall_forces();
+  const std::vector<int> n = sim.wall_contact_counts();
+  for (const ServoGroup& g : groups) {
+    WallMotion m;
+    m.velocity = g.speed(f, n, sim.dt, k_max, c_max) * g.inward;
+    for (std::size_t e : g.elements) sim.walls[e].start_motion(m, sim.time);
+  }
+}
+
+}  // namespace dem

@@ -1,0 +1,53 @@
+#pragma once
+// Servo-controlled walls (SPEC §3): a group of wall elements translates along one direction so as
+// to hold a target normal stress. Used by `compact` (one group per wall) and by `[[stage.servo]]`.
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "core/types.hpp"
+#include "walls/wall.hpp"
+
+namespace dem {
+
+class Simulation;
+
+// Area of a convex planar polygon [m^2].
+double polygon_area(const std::vector<Vec3>& v);
+
+struct ServoGroup {
+  std::vector<std::size_t> elements;  // wall indices moved together
+  Vec3 inward = Vec3::UnitZ();        // unit direction in which the group compresses the sample
+  double area = 0;                    // total element area [m^2]
+  double target = 0;                  // target normal stress [Pa], compression positive
+  double max_speed = 0;               // [m/s]
+  double gain = 0.2;                  // fraction of the force error corrected per step
+
+  // Mean normal stress the particles exert on the group: -sum F . inward / area [Pa]
+  // (`element_forces`: Simulation::wall_forces()).
+  double stress(const std::vector<Vec3>& element_forces) const;
+  // Velocity along `inward` for the next step. A velocity change dv changes the group's force at
+  // once by C dv (dashpots) and by K v dt per step (springs), with K = n k_max and C = n c_max
+  // over its n contacts; `gain` = 0.2 corrects about 20 % of the force error per step without
+  // chattering. A group that touches nothing approaches at full speed.
+  double speed(const std::vector<Vec3>& element_forces, const std::vector<int>& element_contacts, double dt, double k_max,
+               double c_max) const;
+};
+
+// The walls whose names match `pattern` (a wall or group name), at time t, with their total area
+// and the area-weighted normal, each element's normal turned towards `towards` (or `direction` if
+// given). Throws InputError if the elements do not face one way.
+ServoGroup servo_group(const std::vector<Wall>& walls, double t, const std::string& pattern, const Vec3& towards,
+                       const Vec3* direction = nullptr);
+
+// The centroid of the particles' centres (the side a servo wall pushes towards).
+Vec3 particle_centroid(const Simulation& sim);
+
+// The largest stiffness and the largest wall dashpot c = 2 gamma sqrt(m k) (eq. 2.27-2.28, wall:
+// m* = m_i) of a simulation: the servo's estimate of a contact's response.
+void servo_constants(const Simulation& sim, double& k_max, double& c_max);
+
+// Sets each group's elements to translate at its servo speed along `inward` from now.
+void drive_servos(Simulation& sim, const std::vector<ServoGroup>& groups, double k_max, double c_max);
+
+}  // namespace dem
