@@ -17,6 +17,7 @@
 
 #include "core/error.hpp"
 #include "io/scene_parser.hpp"
+#include "sim/simulation.hpp"
 #include "walls/primitives.hpp"
 #include "walls/stl.hpp"
 #include "walls/wall.hpp"
@@ -185,7 +186,7 @@ TEST_F(TempDir, StlErrorsNameTheFileAndTheProblem) {
       {"extra.stl", good + "xyz", {"triangle count disagrees with the size", std::to_string(good.size() + 3)}},
       {"zero_binary.stl", count_zero, {"zero_binary.stl: the STL file holds no triangles"}},
       {"nan_binary.stl", nan_binary, {"nan_binary.stl", "triangle 0 has a non-finite coordinate"}},
-      {"solid_truncated.stl", solid_truncated, {"solid_truncated.stl:", "ASCII STL", "holds binary data", "needing"}},
+      {"solid_truncated.stl", solid_truncated, {"solid_truncated.stl: not a valid STL file: it starts with 'solid' but holds binary data", "needing " + std::to_string(good.size()), "has " + std::to_string(good.size() - 7)}},
       {"zero_ascii.stl", "solid x\nendsolid x\n", {"zero_ascii.stl: the STL file holds no triangles"}},
       {"typo.stl", "solid x\nfacet normal 0 0 1\nouter lop\n", {"typo.stl:3: ASCII STL: expected 'loop', got 'lop'"}},
       {"number.stl", "solid x\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 abc\n",
@@ -435,6 +436,33 @@ TEST(MeshPrimitives, ValidFarFromTheOrigin) {
   expect_valid_elements(helical_ramp_mesh(base, Vec3(0, 0, 1), 0.1, 2.0, 0.5, 3, 512));
 }
 
+// Contact across element edges. A sphere resting on a flat floor made of 2 x 2 quads should feel
+// the same force as on one quad, wherever it sits. Today each element is a wall of its own: over
+// a shared edge both elements report the same closest point and the force doubles (four times
+// over the shared vertex): measured 2x and 4x k_n·u. Disabled until the wall force loop merges
+// such contacts (the force loop is not part of the mesh change); the expected values are exact
+// (one linear spring, no damping): tolerance 1e-12 relative.
+TEST(MeshContact, DISABLED_SphereOverASharedEdgeFeelsOneContact) {
+  Material m;
+  m.name = "m";
+  m.kn = m.kt = 1e4;
+  m.restitution = m.restitution_t = 1.0;
+  const double a = 0.001, gap = 0.0009;
+  for (const Vec3& c : {Vec3(0.3, 0.3, gap), Vec3(0.5, 0.3, gap), Vec3(0.5, 0.5, gap)}) {
+    Simulation sim;
+    sim.materials = MaterialTable({m}, {});
+    sim.params.gravity = Vec3::Zero();
+    const std::vector<Polygon> floor = rectangle_mesh(Vec3::Zero(), Vec3::UnitX(), Vec3::UnitY(), 2, 2);
+    for (std::size_t k = 0; k < floor.size(); ++k) sim.walls.push_back(Wall{"floor." + std::to_string(k), 0, floor[k], {}});
+    sim.particles.add(0, c, a, 2500, 0);
+    sim.dt = 1e-9;
+    sim.advance();
+    Vec3 f = Vec3::Zero();
+    for (std::size_t k = 0; k < sim.wall_contacts().size(); ++k) f += sim.wall_contacts().force(k);
+    EXPECT_NEAR(f.z(), m.kn * (a - gap), 1e-12 * m.kn * (a - gap)) << "sphere at " << c.transpose();
+  }
+}
+
 TEST(MeshPrimitives, PreconditionsAreChecked) {
   EXPECT_THROW(cylinder_mesh(Vec3::Zero(), Vec3::Zero(), 1, 1), std::invalid_argument) << "zero axis";
   EXPECT_THROW(cylinder_mesh(Vec3::Zero(), Vec3::UnitZ(), -1, 1), std::invalid_argument);
@@ -443,6 +471,209 @@ TEST(MeshPrimitives, PreconditionsAreChecked) {
   EXPECT_THROW(cone_mesh(Vec3::Zero(), Vec3::UnitZ(), 0, 0, 1), std::invalid_argument);
   EXPECT_THROW(helical_ramp_mesh(Vec3::Zero(), Vec3::UnitZ(), 0, 1, 0, 1), std::invalid_argument) << "zero pitch";
   EXPECT_THROW(rectangle_mesh(Vec3::Zero(), Vec3::UnitX(), 2 * Vec3::UnitX(), 1, 1), std::invalid_argument) << "parallel";
+}
+
+}  // namespace
+}  // namespace dem
+
+namespace dem {
+namespace {
+
+// ---------------------------------------------------------------------------------- scene syntax
+
+// A scene with one material and the [[wall]] "drum" whose remaining keys are `wall`.
+std::string scene_with(const std::string& wall, const std::string& more = "") {
+  return "[[material]]\nname = \"steel\"\ndensity = 7800.0\nkn = 1.0e5\n\n"
+         "[[wall]]\nname = \"drum\"\nmaterial = \"steel\"\n" + wall + "\n" + more;
+}
+
+// The names and vertices of the scene's walls are those of the primitive, in its order.
+void expect_mesh(const Scene& s, const std::vector<Polygon>& want, std::size_t first = 0) {
+  ASSERT_GE(s.walls.size(), first + want.size());
+  for (std::size_t k = 0; k < want.size(); ++k) {
+    const WallSpec& w = s.walls[first + k];
+    EXPECT_EQ(w.name, "drum." + std::to_string(k));
+    EXPECT_EQ(w.material, 0);
+    EXPECT_EQ(w.vertices, want[k]) << w.name;
+  }
+}
+
+TEST(MeshScene, EachPrimitiveTypeParses) {
+  {
+    const Scene s = parse_scene(scene_with("type = \"cylinder\"\nbase_centre = [0.0, 0.0, 0.1]\nradius = 0.5\nheight = 1.0\n"
+                                           "segments = 32\nrings = 2\n"),
+                                "scene.toml");
+    ASSERT_EQ(s.walls.size(), 64u);
+    expect_mesh(s, cylinder_mesh(Vec3(0, 0, 0.1), Vec3::UnitZ(), 0.5, 1.0, 32, 2));
+    EXPECT_EQ(s.walls.back().name, "drum.63");
+  }
+  {
+    const Scene s = parse_scene(scene_with("type = \"cylinder\"\nbase_centre = [0, 0, 0]\naxis = [1, 0, 0]\nradius = 0.5\nheight = 1\n"),
+                                "scene.toml");
+    EXPECT_EQ(s.walls.size(), std::size_t(kDefaultSegments)) << "segments defaults to 64, rings to 1";
+  }
+  {
+    const Scene s = parse_scene(scene_with("type = \"disc\"\ncentre = [1, 2, 3]\nnormal = [0, 1, 0]\nradius = 0.2\ninner_radius = 0.05\nsegments = 12\n"),
+                                "scene.toml");
+    expect_mesh(s, disc_mesh(Vec3(1, 2, 3), Vec3::UnitY(), 0.2, 0.05, 12));
+    EXPECT_EQ(s.walls.size(), 12u);
+  }
+  {
+    const Scene s = parse_scene(scene_with("type = \"cone\"\nbase_centre = [0, 0, 0]\nradius_base = 0.02\nradius_top = 0.2\nheight = 0.3\nsegments = 16\n"),
+                                "scene.toml");
+    expect_mesh(s, cone_mesh(Vec3::Zero(), Vec3::UnitZ(), 0.02, 0.2, 0.3, 16));
+    EXPECT_EQ(s.walls.size(), 16u);
+  }
+  {
+    const Scene s = parse_scene(scene_with("type = \"helix\"\nbase_centre = [0, 0, 0]\nradius = 0.5\ninner_radius = 0.1\npitch = 0.4\n"
+                                           "turns = 2.0\nsegments_per_turn = 32\nradial_segments = 2\n"),
+                                "scene.toml");
+    expect_mesh(s, helical_ramp_mesh(Vec3::Zero(), Vec3::UnitZ(), 0.1, 0.5, 0.4, 2.0, 32, 2));
+    EXPECT_EQ(s.walls.size(), 256u) << "2 x 64 steps x 2 bands";
+  }
+  {
+    const Scene s = parse_scene(scene_with("type = \"rectangle\"\ncorner = [0, 0, 0]\nedge_u = [1, 0, 0]\nedge_v = [0, 1, 0]\nnu = 3\nnv = 2\n"
+                                           "elements = \"triangles\"\n"),
+                                "scene.toml");
+    expect_mesh(s, rectangle_mesh(Vec3::Zero(), Vec3::UnitX(), Vec3::UnitY(), 3, 2, true));
+    EXPECT_EQ(s.walls.size(), 12u);
+  }
+}
+
+// The thesis's helical-flow case (§4.3, fig. 4.4): a drum with a ramp inside, each its own wall,
+// next to a box; groups select whole meshes in stage motions, box faces keep their names.
+TEST(MeshScene, DrumWithRampAndGroups) {
+  const std::string text = scene_with(
+      "type = \"cylinder\"\nbase_centre = [0, 0, 0]\nradius = 0.5\nheight = 1.0\nsegments = 48\n",
+      "[[wall]]\nname = \"ramp\"\nmaterial = \"steel\"\ntype = \"helix\"\nbase_centre = [0, 0, 0]\nradius = 0.5\n"
+      "inner_radius = 0.2\npitch = 0.5\nturns = 2\nsegments_per_turn = 48\n\n"
+      "[[wall]]\nname = \"box\"\nmaterial = \"steel\"\ntype = \"box\"\nmin = [-1, -1, -0.1]\nmax = [1, 1, 1.5]\n\n"
+      "[[stage]]\nname = \"spin\"\nduration = 0.1\n\n[[stage.motion]]\nwall = \"drum\"\ntype = \"translate\"\nvelocity = [0, 0, 0.1]\n\n"
+      "[[stage.motion]]\nwall = \"ramp.7\"\ntype = \"fixed\"\n");
+  const Scene s = parse_scene(text, "scene.toml");
+  ASSERT_EQ(s.walls.size(), 48u + 192u + 6u);
+  EXPECT_EQ(s.walls[47].name, "drum.47");
+  EXPECT_EQ(s.walls[48].name, "ramp.0");
+  EXPECT_EQ(s.walls[239].name, "ramp.191");
+  EXPECT_EQ(s.walls[240].name, "box.xmin");
+  std::size_t drum = 0;
+  for (const WallSpec& w : s.walls) drum += wall_matches(w.name, "drum");
+  EXPECT_EQ(drum, 48u) << "\"drum\" selects every element of the drum and nothing else";
+}
+
+TEST_F(TempDir, StlWallIsReadRelativeToTheSceneAndTransformed) {
+  // A unit right triangle and a quad split in two, in millimetres, plus one degenerate triangle.
+  std::vector<Triangle> tris = {{Vec3(0, 0, 0), Vec3(1000, 0, 0), Vec3(0, 1000, 0)},
+                                {Vec3(0, 0, 0), Vec3(0, 0, 500), Vec3(0, 0, 1000)},
+                                {Vec3(0, 0, 1000), Vec3(1000, 0, 1000), Vec3(1000, 1000, 1000)}};
+  fs::create_directories(dir_ / "parts");
+  write_stl_binary(path("parts/hopper.stl"), tris);
+  const std::string scene = path("scene.toml");
+  const std::string wall = "type = \"stl\"\nfile = \"parts/hopper.stl\"\nscale = 0.001\ntranslate = [0.0, 0.0, 2.0]\n"
+                           "rotate = { axis = [0, 0, 1], angle = 90.0 }\n";
+  try {
+    parse_scene(scene_with(wall), scene);
+    FAIL() << "degenerate triangle accepted";
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_EQ(msg.rfind(scene + ":10:8:", 0), 0u) << msg;
+    for (const char* f : {"wall[0].file = \"parts/hopper.stl\"", "1 of 3 triangles are degenerate", "triangle 1", "skip_degenerate = true"})
+      EXPECT_NE(msg.find(f), std::string::npos) << "missing '" << f << "' in: " << msg;
+  }
+  const Scene s = parse_scene(scene_with(wall + "skip_degenerate = true\n"), scene);
+  ASSERT_EQ(s.walls.size(), 2u);
+  EXPECT_EQ(s.walls[1].name, "drum.1") << "numbered after the degenerate one is dropped";
+  // x -> R·(0.001·x) + (0, 0, 2) with R a quarter turn about z: (1000, 0, 0) mm -> (0, 1, 2) m.
+  // Tolerance: cos(90°) computed in double is 6e-17.
+  EXPECT_TRUE(s.walls[0].vertices[1].isApprox(Vec3(0, 1, 2), 1e-15)) << s.walls[0].vertices[1].transpose();
+  EXPECT_TRUE(s.walls[1].vertices[2].isApprox(Vec3(-1, 1, 3), 1e-15)) << s.walls[1].vertices[2].transpose();
+  // An absolute path works from anywhere.
+  const Scene abs = parse_scene(scene_with("type = \"stl\"\nfile = \"" + path("parts/hopper.stl") + "\"\nskip_degenerate = true\n"), "elsewhere/scene.toml");
+  EXPECT_EQ(abs.walls.size(), 2u);
+}
+
+// The committed fixture: tests/data/mesh_walls.toml and the STL files beside it (generated by
+// tests/data/make_stl_fixtures.py), read through read_scene_file as the tools do.
+TEST(MeshScene, FixtureSceneFromTestData) {
+  const Scene s = read_scene_file(std::string(DEM_TEST_DATA) + "/mesh_walls.toml");
+  std::map<std::string, int> per_wall;
+  for (const WallSpec& w : s.walls) ++per_wall[w.name.substr(0, w.name.find('.'))];
+  EXPECT_EQ(per_wall["hopper"], 32) << "cone, 32 segments";
+  EXPECT_EQ(per_wall["floor"], 4) << "2 x 2 quads";
+  EXPECT_EQ(per_wall["deflector"], 4) << "tetrahedron, ASCII STL";
+  EXPECT_EQ(per_wall["baffle"], 2) << "square, binary STL whose header starts with \"solid\"";
+}
+
+struct MeshBadCase {
+  const char* what;
+  std::string wall;                  // keys after name and material
+  std::vector<std::string> expect;   // fragments the message must contain
+};
+
+std::vector<MeshBadCase> mesh_bad_cases() {
+  const std::string cyl = "type = \"cylinder\"\nbase_centre = [0, 0, 0]\nheight = 1.0\n";
+  const std::string helix = "type = \"helix\"\nbase_centre = [0, 0, 0]\nradius = 0.5\nturns = 1.0\n";
+  return {
+      {"negative radius", cyl + "radius = -0.1\n", {"scene.toml:12:10: wall[0].radius = -0.1", "out of range: allowed (0, inf) m"}},
+      {"zero segments", cyl + "radius = 0.5\nsegments = 0\n", {"scene.toml:13:12: wall[0].segments = 0", "out of range: allowed [3, 1000000]"}},
+      {"segments not an integer", cyl + "radius = 0.5\nsegments = 32.5\n", {"wall[0].segments = 32.5", "expected an integer"}},
+      {"too many elements", cyl + "radius = 0.5\nsegments = 1000\nrings = 2000\n",
+       {"wall[0].segments = 1000", "2000000 elements (segments x rings)", "limit of 1000000"}},
+      {"unknown key", cyl + "radius = 0.5\nradiuss = 0.5\n",
+       {"scene.toml:13:11: wall[0].radiuss = 0.5", "unknown key", "allowed here: axis, base_centre, height"}},
+      {"zero axis", cyl + "radius = 0.5\naxis = [0, 0, 0]\n", {"wall[0].axis = [...]", "non-zero"}},
+      {"missing height", "type = \"cylinder\"\nbase_centre = [0, 0, 0]\nradius = 0.5\n", {"scene.toml:6: wall[0].height is missing"}},
+      {"inner radius = radius", "type = \"disc\"\ncentre = [0, 0, 0]\nradius = 0.5\ninner_radius = 0.5\n",
+       {"wall[0].inner_radius = 0.5", "allowed [0, radius) m, radius = 0.5 m"}},
+      {"inner radius above the helix radius", helix + "pitch = 0.2\ninner_radius = 0.6\n", {"wall[0].inner_radius = 0.6", "[0, radius)"}},
+      {"zero pitch", helix + "pitch = 0.0\n", {"wall[0].pitch = 0", "non-zero"}},
+      {"huge helix", helix + "pitch = 0.2\nsegments_per_turn = 1000000\nradial_segments = 2\n",
+       {"wall[0].turns = 1", "4000000 elements", "limit"}},
+      {"cone without radii", "type = \"cone\"\nbase_centre = [0, 0, 0]\nradius_base = 0\nradius_top = 0.0\nheight = 1\n",
+       {"wall[0].radius_top = 0", "both 0"}},
+      {"negative cone radius", "type = \"cone\"\nbase_centre = [0, 0, 0]\nradius_base = -1\nradius_top = 0.0\nheight = 1\n",
+       {"wall[0].radius_base = -1", "[0, inf) m"}},
+      {"parallel rectangle edges", "type = \"rectangle\"\ncorner = [0, 0, 0]\nedge_u = [1, 0, 0]\nedge_v = [2, 0, 0]\n",
+       {"wall[0].edge_v = [...]", "not be parallel"}},
+      {"unknown element kind", "type = \"rectangle\"\ncorner = [0, 0, 0]\nedge_u = [1, 0, 0]\nedge_v = [0, 1, 0]\nelements = \"hexagons\"\n",
+       {"wall[0].elements = \"hexagons\"", "\"quads\", \"triangles\""}},
+      {"missing STL file", "type = \"stl\"\nfile = \"no_such.stl\"\n",
+       {"scene.toml:10:8: wall[0].file = \"no_such.stl\"", "no_such.stl: cannot open the STL file"}},
+      {"zero scale", "type = \"stl\"\nfile = \"x.stl\"\nscale = 0\n", {"wall[0].scale = 0", "(0, inf)"}},
+      {"unknown rotate key", "type = \"stl\"\nfile = \"x.stl\"\nrotate = { axis = [0, 0, 1], angle = 90, scale = 2 }\n",
+       {"wall[0].rotate.scale = 2", "unknown key"}},
+      {"unknown type lists the types", "type = \"sphere\"\n",
+       {"wall[0].type = \"sphere\"", "\"polygon\", \"box\", \"rectangle\", \"cylinder\", \"disc\", \"cone\", \"helix\", \"stl\""}},
+  };
+}
+
+class MeshSceneRejects : public ::testing::TestWithParam<MeshBadCase> {};
+
+TEST_P(MeshSceneRejects, WithAClearMessage) {
+  const MeshBadCase& c = GetParam();
+  try {
+    parse_scene(scene_with(c.wall), "scene.toml");
+    FAIL() << c.what << ": accepted";
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_EQ(msg.rfind("scene.toml:", 0), 0u) << "names the file: " << msg;
+    for (const std::string& f : c.expect) EXPECT_NE(msg.find(f), std::string::npos) << c.what << ": missing '" << f << "' in: " << msg;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(BadMeshWalls, MeshSceneRejects, ::testing::ValuesIn(mesh_bad_cases()));
+
+TEST(MeshScene, NamesStayUniqueAndDotFree) {
+  const std::string cyl = "type = \"cylinder\"\nbase_centre = [0, 0, 0]\nradius = 0.5\nheight = 1\nsegments = 8\n";
+  try {
+    parse_scene(scene_with(cyl, "[[wall]]\nname = \"drum\"\nmaterial = \"steel\"\ntype = \"box\"\nmin = [0, 0, 0]\nmax = [1, 1, 1]\n"), "scene.toml");
+    FAIL() << "two walls named drum";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("wall[1].name = \"drum\": duplicate wall name \"drum\" (also wall[0])"), std::string::npos) << e.what();
+  }
+  std::string dotted = scene_with(cyl);
+  dotted.replace(dotted.find("\"drum\""), 6, "\"drum.1\"");
+  EXPECT_THROW(parse_scene(dotted, "scene.toml"), InputError);
 }
 
 }  // namespace

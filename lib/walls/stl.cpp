@@ -208,14 +208,16 @@ std::vector<Triangle> read_stl(const std::string& path) {
   } else if (solid) {
     try {
       tris = AsciiReader(path, data).read();
-    } catch (const IoError& e) {
+    } catch (const IoError&) {
       if (!looks_binary(data)) throw;
-      // A binary file whose header starts with "solid" and whose size is wrong: say so.
-      std::string hint = "; the file holds binary data";
-      if (data.size() >= kFirstRecord)
-        hint += ": as binary STL its header gives " + std::to_string(le32(data.data() + kHeader)) + " triangles, needing " +
-                std::to_string(binary_size(data)) + " bytes, but it has " + std::to_string(data.size());
-      throw IoError(e.what() + hint);
+      // Most likely a binary file whose header starts with "solid" and whose size is wrong: the
+      // ASCII syntax error would only confuse.
+      const std::string what = "not a valid STL file: it starts with 'solid' but holds binary data, and ";
+      if (data.size() < kFirstRecord)
+        fail(path, what + "it is too short for binary STL (" + std::to_string(data.size()) + " bytes, at least 84 needed)");
+      fail(path, what + "as binary STL its header gives " + std::to_string(le32(data.data() + kHeader)) + " triangles, needing " +
+                     std::to_string(binary_size(data)) + " bytes, but the file has " + std::to_string(data.size()) +
+                     " (truncated?)");
     }
   } else if (data.size() < kFirstRecord) {
     fail(path, "not an STL file: too short for binary STL (" + std::to_string(data.size()) +
