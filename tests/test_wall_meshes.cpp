@@ -397,6 +397,33 @@ TEST(MeshPrimitives, HelixAreaConverges) {
   EXPECT_LT(prev, 1e-4) << "256 steps per turn, 16 bands";
 }
 
+// The flat triangles stray from the helicoid by less than one step's rise b·Δθ (b = pitch/2π),
+// as documented (sampled worst: 0.69 b·Δθ for a strip reaching the axis, 0.3 for a ramp with a
+// shaft). Distance measured along the surface normal from the height offset at the same (r, φ).
+TEST(MeshPrimitives, HelixTrianglesStayCloseToTheSurface) {
+  for (const double ri : {0.0, 0.05}) {
+    const double ro = 0.2, pitch = 0.15, b = pitch / (2 * kPi);
+    const int spt = 24;
+    const double dtheta = 2 * kPi / spt;
+    const std::vector<Polygon> m = helical_ramp_mesh(Vec3::Zero(), Vec3::UnitZ(), ri, ro, pitch, 1.0, spt);
+    double worst = 0;
+    for (std::size_t e = 0; e < m.size(); ++e) {
+      const double theta_k = dtheta * double(e / 2);  // one band: elements 2k, 2k+1 belong to step k
+      for (int i = 0; i <= 20; ++i)
+        for (int j = 0; i + j <= 20; ++j) {
+          const Vec3 x = m[e][0] + (i / 20.0) * (m[e][1] - m[e][0]) + (j / 20.0) * (m[e][2] - m[e][0]);
+          const double r = std::hypot(x.x(), x.y());
+          if (r < 1e-12) continue;  // on the axis every height belongs to the surface
+          double phi = std::atan2(x.y(), x.x());
+          phi += 2 * kPi * std::round((theta_k + dtheta / 2 - phi) / (2 * kPi));  // unwrap near the step
+          worst = std::max(worst, std::abs(x.z() - b * phi) * r / std::hypot(r, b));
+        }
+    }
+    EXPECT_LT(worst, b * dtheta) << "inner radius " << ri;
+    EXPECT_GT(worst, 0.1 * b * dtheta) << "the check sees the first-order error";
+  }
+}
+
 // Several radial bands: every band's vertices at its radius, the bands share their edges.
 TEST(MeshPrimitives, HelixRadialBands) {
   const int spt = 16, bands = 3;

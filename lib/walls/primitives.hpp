@@ -59,10 +59,12 @@ std::vector<Polygon> cone_mesh(const Vec3& base_centre, const Vec3& axis, double
 // N = ceil(turns·segments_per_turn) equal angular steps and `radial_segments` equal radial bands.
 // A helicoid is twisted, so each cell's quad (r_j θ_k, r_j+1 θ_k, r_j+1 θ_k+1, r_j θ_k+1) is not
 // planar: it is split along (r_j θ_k, r_j+1 θ_k+1) into two triangles, elements 2c and 2c+1 of
-// cell c = k·radial_segments + j. The flat triangles stay within c·Δθ·Δr/(2·(r_j + r_j+1)) of
-// the surface (c = |pitch|/(2π), Δθ = 2π·turns/N, Δr the band width): first order in Δθ, and only
-// more bands make the tilt of the triangles follow the tilt of the surface, which grows towards
-// the axis (one band across a wide strip gives the area of the trapezoid rule across r).
+// cell c = k·radial_segments + j. The flat triangles stray from the surface by roughly
+// b·Δθ·Δr/(2·(r_j + r_j+1)) (b = |pitch|/(2π), Δθ = 2π·turns/N, Δr the band width; up to 1.4
+// times that in a band reaching the axis; sampled numerically), less than one step's rise b·Δθ:
+// first order in Δθ. Only more bands make the tilt of the triangles follow the tilt of the
+// surface, which grows towards the axis (one band across a wide strip gives the area of the
+// trapezoid rule across r).
 std::vector<Polygon> helical_ramp_mesh(const Vec3& base_centre, const Vec3& axis, double inner_radius,
                                        double outer_radius, double pitch, double turns,
                                        int segments_per_turn = kDefaultSegments, int radial_segments = 1);
