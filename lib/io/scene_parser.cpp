@@ -2,14 +2,18 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <map>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 #include <toml++/toml.h>
 
 #include "core/error.hpp"
+#include "walls/primitives.hpp"
+#include "walls/stl.hpp"
 
 namespace dem {
 
@@ -347,14 +351,165 @@ void add_wall(TableReader& r, Scene& sc, WallSpec w) {
   sc.walls.push_back(std::move(w));
 }
 
+// A mesh of more elements than this is refused (a typo in `segments` or `scale` should not eat
+// the memory; the thesis's drum has a few thousand quads, fig. 4.4).
+constexpr long long kMaxMeshElements = 1000000;
+
+// `keys`: the keys that set the count, as written in the message; the first one given is blamed.
+void check_mesh_size(TableReader& r, const std::vector<std::string>& keys, const std::string& formula, long long elements) {
+  if (elements <= kMaxMeshElements) return;
+  std::string blame = "type";
+  for (auto it = keys.rbegin(); it != keys.rend(); ++it)
+    if (r.has(*it)) blame = *it;
+  r.fail(blame, "the mesh would have " + std::to_string(elements) + " elements (" + formula + "), more than the limit of " +
+                    std::to_string(kMaxMeshElements) + " per wall");
+}
+
+// Adds the elements of a mesh wall as NAME.0, NAME.1, ... The [[wall]] name is unique and has no
+// '.', so these names are new; every element is checked again as a polygon (a safety net).
+void add_mesh(TableReader& r, Scene& sc, const std::string& name, int material, std::vector<Polygon> elements,
+              const std::string& blame) {
+  sc.walls.reserve(sc.walls.size() + elements.size());
+  for (std::size_t k = 0; k < elements.size(); ++k) {
+    const std::string problem = polygon_problem(elements[k]);
+    if (!problem.empty()) r.fail(blame, "element " + std::to_string(k) + " of the mesh: " + problem);
+    sc.walls.push_back(WallSpec{name + "." + std::to_string(k), material, std::move(elements[k])});
+  }
+}
+
+Vec3 direction_or(TableReader& r, const std::string& key, const Vec3& def) {
+  const Vec3 a = r.vec3_or(key, def);
+  if (!(a.norm() > 0)) r.fail(key, "must be a non-zero vector");
+  return a;
+}
+
+int segments_of(TableReader& r, const std::string& key) {
+  return static_cast<int>(r.integer_or(key, kDefaultSegments, 3, kMaxMeshElements));
+}
+
+// An inner radius in [0, outer): 0 (the default) = none.
+double inner_radius_of(TableReader& r, double outer) {
+  const double v = r.number_or("inner_radius", 0.0, 0, kInf, "m");
+  if (v >= outer) {
+    std::ostringstream s;
+    s << "out of range: allowed [0, radius) m, radius = " << outer << " m";
+    r.fail("inner_radius", s.str());
+  }
+  return v;
+}
+
+std::vector<Polygon> read_rectangle(TableReader& r) {
+  const Vec3 corner = r.vec3("corner"), u = r.vec3("edge_u"), v = r.vec3("edge_v");
+  if (!(u.norm() > 0)) r.fail("edge_u", "must be a non-zero vector");
+  if (!(v.norm() > 0)) r.fail("edge_v", "must be a non-zero vector");
+  if (!(u.cross(v).norm() > 1e-12 * u.norm() * v.norm())) r.fail("edge_v", "must not be parallel to edge_u");
+  const long nu = r.integer_or("nu", 1, 1, kMaxMeshElements), nv = r.integer_or("nv", 1, 1, kMaxMeshElements);
+  static const std::string quads = "quads";
+  const bool tri = r.choice("elements", {"quads", "triangles"}, &quads) == "triangles";
+  check_mesh_size(r, {"nu", "nv"}, tri ? "2 x nu x nv" : "nu x nv", static_cast<long long>(nu) * nv * (tri ? 2 : 1));
+  return rectangle_mesh(corner, u, v, static_cast<int>(nu), static_cast<int>(nv), tri);
+}
+
+std::vector<Polygon> read_cylinder(TableReader& r) {
+  const Vec3 base = r.vec3("base_centre");
+  const Vec3 axis = direction_or(r, "axis", Vec3::UnitZ());
+  const double radius = r.number("radius", 0, kInf, "m", true);
+  const double height = r.number("height", 0, kInf, "m", true);
+  const int segments = segments_of(r, "segments");
+  const long rings = r.integer_or("rings", 1, 1, kMaxMeshElements);
+  check_mesh_size(r, {"segments", "rings"}, "segments x rings", static_cast<long long>(segments) * rings);
+  return cylinder_mesh(base, axis, radius, height, segments, static_cast<int>(rings));
+}
+
+std::vector<Polygon> read_disc(TableReader& r) {
+  const Vec3 centre = r.vec3("centre");
+  const Vec3 normal = direction_or(r, "normal", Vec3::UnitZ());
+  const double radius = r.number("radius", 0, kInf, "m", true);
+  const double inner = inner_radius_of(r, radius);
+  return disc_mesh(centre, normal, radius, inner, segments_of(r, "segments"));
+}
+
+std::vector<Polygon> read_cone(TableReader& r) {
+  const Vec3 base = r.vec3("base_centre");
+  const Vec3 axis = direction_or(r, "axis", Vec3::UnitZ());
+  const double rb = r.number("radius_base", 0, kInf, "m");
+  const double rt = r.number("radius_top", 0, kInf, "m");
+  if (rb == 0 && rt == 0) r.fail("radius_top", "radius_base and radius_top are both 0: at least one must be > 0");
+  const double height = r.number("height", 0, kInf, "m", true);
+  return cone_mesh(base, axis, rb, rt, height, segments_of(r, "segments"));
+}
+
+std::vector<Polygon> read_helix(TableReader& r) {
+  const Vec3 base = r.vec3("base_centre");
+  const Vec3 axis = direction_or(r, "axis", Vec3::UnitZ());
+  const double radius = r.number("radius", 0, kInf, "m", true);
+  const double inner = inner_radius_of(r, radius);
+  const double pitch = r.number("pitch", -kInf, kInf, "m");
+  if (pitch == 0) r.fail("pitch", "must be non-zero (rise per turn; negative for a left-handed helix)");
+  const double turns = r.number("turns", 0, kInf, "(turns)", true);
+  const int spt = segments_of(r, "segments_per_turn");
+  const int bands = static_cast<int>(r.integer_or("radial_segments", 1, 1, kMaxMeshElements));
+  check_mesh_size(r, {"turns", "segments_per_turn", "radial_segments"}, "2 x ceil(turns x segments_per_turn) x radial_segments",
+                  helical_ramp_elements(turns, spt, bands));
+  return helical_ramp_mesh(base, axis, inner, radius, pitch, turns, spt, bands);
+}
+
+// STL triangles, transformed x -> R·(scale·x) + translate. The file is found relative to the
+// scene file's directory; a file that cannot be read is reported at the `file` key.
+std::vector<Polygon> read_stl_wall(TableReader& r) {
+  const toml::node& fn = r.required("file");
+  const std::string file = r.string_of(fn, "file");
+  if (file.empty()) r.fail_at(&fn, "file", "expected a file name");
+  std::filesystem::path path(file);
+  if (path.is_relative()) path = std::filesystem::path(r.file()).parent_path() / path;
+  const double scale = r.number_or("scale", 1.0, 0, kInf, "(multiplies the file's coordinates, e.g. 0.001 for mm)", true);
+  const Vec3 translate = r.vec3_or("translate", Vec3::Zero());
+  Eigen::Matrix3d rot = Eigen::Matrix3d::Identity();
+  if (const toml::table* t = r.subtable("rotate")) {
+    TableReader rr(*t, r.file(), r.name("rotate"));
+    const Vec3 axis = direction_or(rr, "axis", Vec3::UnitZ());
+    const double angle = rr.number("angle", -kInf, kInf, "degrees");
+    rr.finish();
+    rot = Eigen::AngleAxisd(angle * M_PI / 180, axis.normalized()).toRotationMatrix();
+  }
+  const bool skip = r.boolean_or("skip_degenerate", false);
+  std::vector<Triangle> tris;
+  try {
+    tris = read_stl(path.string());
+  } catch (const IoError& e) {
+    r.fail_at(&fn, "file", e.what());
+  }
+  check_mesh_size(r, {"file"}, "triangles in the file", static_cast<long long>(tris.size()));
+  const std::size_t total = tris.size();
+  std::size_t first = 0;
+  const std::size_t bad = remove_degenerate(tris, &first);
+  if (bad > 0 && !skip)
+    r.fail_at(&fn, "file", path.string() + ": " + std::to_string(bad) + " of " + std::to_string(total) +
+                               " triangles are degenerate (zero area; the first is triangle " + std::to_string(first) +
+                               ", counting from 0); set skip_degenerate = true to drop them");
+  if (tris.empty()) r.fail_at(&fn, "file", path.string() + ": every triangle is degenerate (zero area)");
+  std::vector<Polygon> out;
+  out.reserve(tris.size());
+  for (const Triangle& t : tris) {
+    Polygon p;
+    for (const Vec3& v : t) p.push_back(rot * (scale * v) + translate);
+    out.push_back(std::move(p));
+  }
+  return out;
+}
+
 void read_walls(TableReader& top, Scene& sc) {
   const auto list = top.tables("wall");
+  std::map<std::string, std::size_t> names;  // [[wall]] name -> its index, for duplicates
   for (std::size_t k = 0; k < list.size(); ++k) {
     TableReader r(*list[k], top.file(), indexed("wall", k));
     const std::string name = r.string("name");
     if (name.find('.') != std::string::npos) r.fail("name", "a wall name must not contain '.' (reserved for groups)");
+    if (const auto it = names.find(name); it != names.end())
+      r.fail("name", "duplicate wall name \"" + name + "\" (also " + indexed("wall", it->second) + ")");
+    names.emplace(name, k);
     const int mat = material_ref(r, "material", sc.materials);
-    const std::string type = r.choice("type", {"polygon", "box"});
+    const std::string type = r.choice("type", {"polygon", "box", "rectangle", "cylinder", "disc", "cone", "helix", "stl"});
     if (type == "polygon") {
       const toml::node& vn = r.required("vertices");
       const toml::array* a = vn.as_array();
@@ -362,7 +517,7 @@ void read_walls(TableReader& top, Scene& sc) {
       WallSpec w{name, mat, {}};
       for (const toml::node& e : *a) w.vertices.push_back(r.vec3_of(e, "vertices"));
       add_wall(r, sc, std::move(w));
-    } else {
+    } else if (type == "box") {
       const Vec3 lo = r.vec3("min"), hi = r.vec3("max");
       if (!((hi - lo).array() > 0).all()) r.fail("max", "every component of max must exceed min");
       static const std::vector<std::string> all = {"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"};
@@ -381,6 +536,20 @@ void read_walls(TableReader& top, Scene& sc) {
       for (const std::string& f : faces) {
         add_wall(r, sc, WallSpec{name + "." + f, mat, box_face(lo, hi, f[0] - 'x', f.substr(1) == "max")});
       }
+    } else {
+      // Mesh walls (SPEC §3): elements NAME.0, NAME.1, ... sharing the wall's material.
+      std::vector<Polygon> mesh;
+      try {
+        mesh = type == "rectangle" ? read_rectangle(r)
+               : type == "cylinder" ? read_cylinder(r)
+               : type == "disc"     ? read_disc(r)
+               : type == "cone"     ? read_cone(r)
+               : type == "helix"    ? read_helix(r)
+                                    : read_stl_wall(r);
+      } catch (const std::invalid_argument& e) {
+        r.fail("type", e.what());  // a primitive's own check; the readers above check first
+      }
+      add_mesh(r, sc, name, mat, std::move(mesh), type == "stl" ? "file" : "type");
     }
     r.finish();
   }

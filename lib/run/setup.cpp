@@ -1,6 +1,8 @@
 #include "run/setup.hpp"
 
 #include <algorithm>
+#include <string>
+#include <unordered_map>
 #include <cmath>
 #include <numbers>
 #include <iostream>
@@ -49,13 +51,14 @@ void adopt_scene(Simulation& sim, const Scene& scene, WallPositions positions) {
 
   std::vector<Wall> walls;
   std::vector<int> wall_remap(sim.walls.size(), -1);
+  std::unordered_map<std::string, std::size_t> by_name;  // meshes have many elements: no quadratic search
+  for (std::size_t k = 0; k < sim.walls.size(); ++k) by_name.emplace(sim.walls[k].name, k);
   for (const WallSpec& spec : scene.walls) {
     Wall w{spec.name, spec.material, spec.vertices, WallMotion{}};
-    for (std::size_t k = 0; k < sim.walls.size(); ++k)
-      if (sim.walls[k].name == spec.name) {
-        if (positions == WallPositions::FromCheckpoint) w.base = sim.walls[k].vertices_at(sim.time);  // where the previous stage left it
-        wall_remap[k] = static_cast<int>(walls.size());
-      }
+    if (const auto it = by_name.find(spec.name); it != by_name.end()) {
+      if (positions == WallPositions::FromCheckpoint) w.base = sim.walls[it->second].vertices_at(sim.time);  // where the previous stage left it
+      wall_remap[it->second] = static_cast<int>(walls.size());
+    }
     walls.push_back(std::move(w));
   }
   sim.walls = std::move(walls);
