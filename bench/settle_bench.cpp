@@ -3,18 +3,24 @@
 //                                         prints one line: N, steps, threads, loop seconds,
 //                                         particle-steps per second, contacts, kinetic energies,
 //                                         peak resident memory
+//   settle_bench mesh N STEPS THREADS T   the same with the floor made of about T triangles (a
+//                                         rectangle mesh, as an STL floor would be): the price of a
+//                                         fine mesh wall against one plane
 //   settle_bench lammps-data N FILE       writes the same initial state as a LAMMPS data file
 // The loop time covers the steps only (scene construction excluded), as LAMMPS's "Loop time".
 #include <omp.h>
 #include <sys/resource.h>
 
 #include <chrono>
+#include <cmath>
+#include <string>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <exception>
 
 #include "settle_scene.hpp"
+#include "walls/primitives.hpp"
 
 using namespace dem;
 
@@ -32,16 +38,24 @@ double rotational_energy(const Simulation& sim) {
   return e;
 }
 
-int run(long n, long steps, int threads) {
+int run(long n, long steps, int threads, long floor_triangles = 0) {
   omp_set_num_threads(threads);
   const long rss_before = peak_rss_kb();
   Simulation sim = bench::settle_scene(bench::settle_size(n));
+  if (floor_triangles > 0) {
+    // Wall 4 is the floor (box_face axis 2, min side): replace it by a mesh of the same rectangle.
+    const std::vector<Vec3> f = sim.walls[4].base;
+    const int cells = std::max(1, static_cast<int>(std::lround(std::sqrt(floor_triangles / 2.0))));
+    sim.walls.erase(sim.walls.begin() + 4);
+    for (const std::vector<Vec3>& t : rectangle_mesh(f[0], f[1] - f[0], f[3] - f[0], cells, cells, true))
+      sim.walls.push_back(Wall{"floor." + std::to_string(sim.walls.size()), 1, t, {}});
+  }
   const auto t0 = std::chrono::steady_clock::now();
   for (long s = 0; s < steps; ++s) sim.advance();
   const double loop = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const long rss = peak_rss_kb();
-  std::printf("particles %zu steps %ld threads %d loop_s %.4f psps %.4g contacts %zu ke %.10g rke %.10g rss_kb %ld rss_increase_kb %ld\n",
-              sim.particles.size(), steps, threads, loop, sim.particles.size() * static_cast<double>(steps) / loop,
+  std::printf("walls %zu particles %zu steps %ld threads %d loop_s %.4f psps %.4g contacts %zu ke %.10g rke %.10g rss_kb %ld rss_increase_kb %ld\n",
+              sim.walls.size(), sim.particles.size(), steps, threads, loop, sim.particles.size() * static_cast<double>(steps) / loop,
               sim.pair_contacts().size() + sim.wall_contacts().size(), sim.kinetic_energy() - rotational_energy(sim),
               rotational_energy(sim), rss, rss - rss_before);
   return 0;
@@ -52,6 +66,8 @@ int run(long n, long steps, int threads) {
 int main(int argc, char** argv) {
   try {
     if (argc == 5 && std::strcmp(argv[1], "run") == 0) return run(std::atol(argv[2]), std::atol(argv[3]), std::atoi(argv[4]));
+    if (argc == 6 && std::strcmp(argv[1], "mesh") == 0)
+      return run(std::atol(argv[2]), std::atol(argv[3]), std::atoi(argv[4]), std::atol(argv[5]));
     if (argc == 4 && std::strcmp(argv[1], "lammps-data") == 0) {
       const long n = std::atol(argv[2]);
       const bench::LatticeSize size = bench::settle_size(n);
@@ -62,6 +78,6 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "settle_bench: %s\n", e.what());
     return 1;
   }
-  std::fprintf(stderr, "usage: settle_bench run N STEPS THREADS | settle_bench lammps-data N FILE\n");
+  std::fprintf(stderr, "usage: settle_bench run N STEPS THREADS | settle_bench mesh N STEPS THREADS TRIANGLES | settle_bench lammps-data N FILE\n");
   return 2;
 }

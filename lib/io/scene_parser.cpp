@@ -651,6 +651,16 @@ Region read_region(TableReader& parent, const std::string& key) {
   return g;
 }
 
+// The `wall` key of a table: a name that selects at least one wall (or group) of the scene.
+std::string wall_ref(TableReader& r, const Scene& sc) {
+  const toml::node& wn = r.required("wall");
+  const std::string name = r.string_of(wn, "wall");
+  bool found = false;
+  for (const WallSpec& w : sc.walls) found = found || wall_matches(w.name, name);
+  if (!found) r.fail_at(&wn, "wall", "no wall or wall group of that name");
+  return name;
+}
+
 void read_motion(TableReader& r, MotionSpec& ms) {
   using Part = MotionSpec::Part;
   WallMotion& m = ms.motion;
@@ -735,11 +745,7 @@ void read_stages(TableReader& top, Scene& sc) {
     for (std::size_t m = 0; m < motions.size(); ++m) {
       TableReader mr(*motions[m], top.file(), r.name(indexed("motion", m)));
       MotionSpec ms;
-      const toml::node& wn = mr.required("wall");
-      ms.wall = mr.string_of(wn, "wall");
-      bool found = false;
-      for (const WallSpec& w : sc.walls) found = found || wall_matches(w.name, ms.wall);
-      if (!found) mr.fail_at(&wn, "wall", "no wall or wall group of that name");
+      ms.wall = wall_ref(mr, sc);
       read_motion(mr, ms);
       mr.finish();
       s.motions.push_back(ms);
@@ -748,11 +754,8 @@ void read_stages(TableReader& top, Scene& sc) {
     for (std::size_t m = 0; m < servos.size(); ++m) {
       TableReader sr(*servos[m], top.file(), r.name(indexed("servo", m)));
       ServoSpec sv;
-      const toml::node& wn = sr.required("wall");
-      sv.wall = sr.string_of(wn, "wall");
-      bool found = false;
-      for (const WallSpec& w : sc.walls) found = found || wall_matches(w.name, sv.wall);
-      if (!found) sr.fail_at(&wn, "wall", "no wall or wall group of that name");
+      sv.wall = wall_ref(sr, sc);
+      const toml::node& wn = *sr.node("wall");
       for (const WallSpec& w : sc.walls) {
         if (!wall_matches(w.name, sv.wall)) continue;
         WallMotion m;
