@@ -64,10 +64,11 @@ double wall_forces(const ForceLoopInput& in, ContactList& wc) {
   double worst = 0;
 #pragma omp parallel reduction(max : worst)
   {
-    // Per-thread working storage, grown to the longest run and then kept (no allocation per step).
-    std::vector<Vec3> to_wall;
-    std::vector<std::uint8_t> touching, take;
-    std::vector<int> order;
+    // Per-thread working storage, grown to the longest run and then kept (no allocation per step:
+    // OpenMP keeps its threads, and with them these).
+    static thread_local std::vector<Vec3> to_wall;
+    static thread_local std::vector<std::uint8_t> touching, take;
+    static thread_local std::vector<int> order;
 #pragma omp for schedule(static)
     for (long r = 0; r < runs; ++r) {
       const int first = in.wall_runs[r], n = in.wall_runs[r + 1] - first;
