@@ -7,7 +7,8 @@ tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 scene=$src/data/small.toml
 set -e
 "$bin/gen-primary" --scene "$scene" --out "$tmp/start.h5" --quiet
-"$bin/run-stage" --scene "$scene" --stage long --in "$tmp/start.h5" --out "$tmp/full.h5" --vtk "$tmp/vtk_full" --quiet
+"$bin/run-stage" --scene "$scene" --stage long --in "$tmp/start.h5" --out "$tmp/full.h5" --vtk "$tmp/vtk_full" \
+  --wall-forces "$tmp/full.csv" --wall-forces-every 50 --quiet
 set +e
 
 # 1. kill -9 at 20 random moments (periodic checkpoints every 300 steps, so some kills land
@@ -16,7 +17,7 @@ kills=0 during_write=0
 RANDOM=12345
 for attempt in $(seq 1 100); do
   "$bin/run-stage" --scene "$scene" --stage long --in "$tmp/start.h5" --out "$tmp/killed.h5" --vtk "$tmp/vtk_killed" \
-    --checkpoint-every 300 --restart --quiet 2> /dev/null &
+    --wall-forces "$tmp/killed.csv" --wall-forces-every 50 --checkpoint-every 300 --restart --quiet 2> /dev/null &
   pid=$!
   if [ $kills -lt 20 ]; then
     sleep "0.$((RANDOM % 35 + 10))"
@@ -39,6 +40,8 @@ echo "survived $kills kill -9 ($during_write during a checkpoint write)"
 "$py" "$src/compare_checkpoints.py" "$tmp/full.h5" "$tmp/killed.h5" || exit 1
 # The VTK series is complete and identical too.
 diff -r "$tmp/vtk_full" "$tmp/vtk_killed" > /dev/null || { echo "VTK frames differ after restarts"; exit 1; }
+# So is the per-wall force log (rows after a resumed checkpoint are dropped and written again).
+cmp "$tmp/full.csv" "$tmp/killed.csv" || { echo "wall force CSV differs after restarts"; exit 1; }
 
 # 2. A changed scene refuses to resume (exactness would be lost).
 "$bin/run-stage" --scene "$scene" --stage long --in "$tmp/start.h5" --out "$tmp/x.h5" --checkpoint-every 500 --quiet &

@@ -155,8 +155,8 @@ void run_stage(const StageOptions& o) {
                   << servos[k].target << " Pa)\n";
     }
   }
+  wall_log.finish();  // before the checkpoint: a finished checkpoint means finished outputs (make)
   write_checkpoint(o.out, sim, meta);
-  wall_log.finish();
   std::remove(restart_file.c_str());
 }
 

@@ -30,8 +30,10 @@ WallLog::WallLog(const std::string& path, const std::vector<Wall>& walls, std::i
   }
   std::string kept = kHeader;
   if (resume_step >= 0) {
-    // Keep the rows of the interrupted run up to the checkpoint it resumes from.
+    // Keep the rows of the interrupted run up to the checkpoint it resumes from (from the finished
+    // file if the run was interrupted after renaming it, before its final checkpoint).
     std::ifstream in(partial_);
+    if (!in) in.open(path_);
     std::string line;
     if (std::getline(in, line) && line + "\n" == kHeader)
       while (std::getline(in, line)) {
