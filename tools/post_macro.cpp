@@ -31,7 +31,7 @@ int main(int argc, char** argv) {
   app.add_option("--average-csv", o.average_csv, "stress, solid fraction, velocity (and displacement) averaged over each region (.csv)");
   auto* grid = app.add_option("--grid", o.grid, "coarse-grained fields on a grid over the first region (.vti); needs --cell and --width");
   auto* cell = app.add_option("--cell", o.cell, "grid spacing [m]")->check(CLI::PositiveNumber)->needs(grid);
-  auto* width = app.add_option("--width", o.width, "kernel width w [m]: standard deviation of the Gaussian, cut at 3w")
+  auto* width = app.add_option("--width", o.width, "kernel width w [m]: standard deviation of Lucy's kernel along each axis (support radius 3.46 w)")
                     ->check(CLI::PositiveNumber)
                     ->needs(grid);
   grid->needs(cell)->needs(width);

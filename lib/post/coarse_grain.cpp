@@ -78,8 +78,8 @@ GridFields coarse_grain(const Particles& p, const ContactForceSet& c, const std:
   if (!(width > 0)) throw std::invalid_argument("coarse_grain: the kernel width must be positive");
   if (!(grid.cell > 0) || grid.n[0] < 1 || grid.n[1] < 1 || grid.n[2] < 1) throw std::invalid_argument("coarse_grain: empty grid");
   if (u != nullptr && u->size() != p.size()) throw std::invalid_argument("coarse_grain: one displacement per particle needed");
-  const GaussianKernel kern(width);
-  const double cut = kern.cutoff(), cut2 = cut * cut, amp = kern.amplitude(), h = grid.cell;
+  const LucyKernel kern(width);
+  const double cut = kern.cutoff(), cut2 = cut * cut, h = grid.cell;
   const long nx = grid.n[0], ny = grid.n[1], nz = grid.n[2];
   const Vec3 o = grid.origin;
   const std::size_t nodes = grid.nodes();
@@ -139,7 +139,6 @@ GridFields coarse_grain(const Particles& p, const ContactForceSet& c, const std:
   {
     std::vector<NodeSums> sums;
     std::vector<Mat3> kin;
-    std::vector<double> ex, ey;
 #pragma omp for schedule(dynamic, 1)
     for (long k = 0; k < nz; ++k) {
       const double zk = o[2] + h * k;
@@ -155,18 +154,13 @@ GridFields coarse_grain(const Particles& p, const ContactForceSet& c, const std:
         const double reach = std::sqrt(cut2 - dz * dz);
         const auto [i0, i1] = range(0, x[0] - reach, x[0] + reach);
         const auto [j0, j1] = range(1, x[1] - reach, x[1] + reach);
-        if (i0 > i1 || j0 > j1) return;
-        ex.resize(i1 - i0 + 1);
-        ey.resize(j1 - j0 + 1);
-        for (long i = i0; i <= i1; ++i) ex[i - i0] = kern.axis_factor(o[0] + h * i - x[0]);
-        for (long j = j0; j <= j1; ++j) ey[j - j0] = kern.axis_factor(o[1] + h * j - x[1]);
-        const double az = amp * kern.axis_factor(dz);
         for (long j = j0; j <= j1; ++j) {
           const double dy = o[1] + h * j - x[1];
           for (long i = i0; i <= i1; ++i) {
             const double dx = o[0] + h * i - x[0];
-            if (dx * dx + dy * dy + dz * dz >= cut2) continue;
-            f(j * nx + i, az * ex[i - i0] * ey[j - j0], Vec3(-dx, -dy, -dz));
+            const double r2 = dx * dx + dy * dy + dz * dz;
+            if (r2 >= cut2) continue;
+            f(j * nx + i, kern.value_r2(r2), Vec3(-dx, -dy, -dz));
           }
         }
       };

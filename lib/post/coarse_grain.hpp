@@ -1,6 +1,7 @@
 #pragma once
 // Coarse-grained continuum fields on a regular grid (SPEC §11; Goldhirsch 2010, Weinhart et al.
-// 2012), with the truncated Gaussian kernel phi of post/kernel.hpp (width w, cut-off 3w):
+// 2012), with Lucy's kernel phi of post/kernel.hpp (standard deviation w along each axis, support
+// radius c = sqrt(12) w):
 //   density         rho(r) = sum_p m_p phi(r - x_p)                                   [kg/m^3]
 //   solid fraction  nu(r)  = sum_p V_p phi(r - x_p)                                   [1]
 //   velocity        V(r)   = sum_p m_p v_p phi(r - x_p) / rho(r)   (0 where rho = 0)   [m/s]

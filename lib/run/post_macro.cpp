@@ -188,8 +188,8 @@ void post_macro(const PostOptions& o) {
                 p.size(), forces.pairs(), forces.walls(), part.c_str(), box_text(main_box).c_str(), pressure_of(s), deviatoric_q(s), s(2, 2));
   }
   if (!o.grid.empty())
-    std::printf("post-macro: grid %ld x %ld x %ld nodes, cell %g m, kernel width %g m (Gaussian cut at 3w): %.2f s\n", grid.n[0], grid.n[1],
-                grid.n[2], o.cell, o.width, grid_seconds);
+    std::printf("post-macro: grid %ld x %ld x %ld nodes, cell %g m, kernel width %g m (Lucy, support radius %g m): %.2f s\n", grid.n[0], grid.n[1],
+                grid.n[2], o.cell, o.width, std::sqrt(12.0) * o.width, grid_seconds);
   std::printf("post-macro: %.2f s\n", seconds_since(t0));
 }
 
