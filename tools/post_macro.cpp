@@ -1,4 +1,7 @@
 // post-macro: stresses and displacement fields of a checkpoint, to VTK and CSV (docs/post.md).
+#include <cmath>
+#include <string>
+
 #include "run/post_macro.hpp"
 #include "tool_main.hpp"
 
@@ -22,6 +25,18 @@ int main(int argc, char** argv) {
         }
       },
       "box:x0,y0,z0,x1,y1,z1");
+  const CLI::Validator positive_length(
+      [](std::string& s) {
+        double x = 0;
+        std::size_t used = 0;
+        try {
+          x = std::stod(s, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        return used == s.size() && std::isfinite(x) && x > 0 ? std::string() : "must be a positive length in metres, got " + s;
+      },
+      "METRES");
   app.add_option("--in", o.in, "checkpoint to post-process (HDF5)")->required()->check(CLI::ExistingFile);
   auto* ref = app.add_option("--reference", o.reference, "reference checkpoint for displacements, particles matched by id (HDF5)")
                   ->check(CLI::ExistingFile);
@@ -30,9 +45,9 @@ int main(int argc, char** argv) {
   app.add_option("--stress-csv", o.stress_csv, "stress profile along --axis in --bins slabs of the first region (.csv)");
   app.add_option("--average-csv", o.average_csv, "stress, solid fraction, velocity (and displacement) averaged over each region (.csv)");
   auto* grid = app.add_option("--grid", o.grid, "coarse-grained fields on a grid over the first region (.vti); needs --cell and --width");
-  auto* cell = app.add_option("--cell", o.cell, "grid spacing [m]")->check(CLI::PositiveNumber)->needs(grid);
+  auto* cell = app.add_option("--cell", o.cell, "grid spacing [m]")->check(positive_length)->needs(grid);
   auto* width = app.add_option("--width", o.width, "kernel width w [m]: standard deviation of Lucy's kernel along each axis (support radius 3.46 w)")
-                    ->check(CLI::PositiveNumber)
+                    ->check(positive_length)
                     ->needs(grid);
   grid->needs(cell)->needs(width);
   app.add_option("--chains", o.chains, "force chains: one line per contact with its force (.vtp)");

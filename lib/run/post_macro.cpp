@@ -185,7 +185,8 @@ void post_macro(const PostOptions& o) {
     const Mat3 s = o.kinetic ? Mat3(a.contact + a.kinetic) : a.contact;
     std::printf("post-macro: %zu particles, %zu particle contacts, %zu wall contacts; %s over %s: pressure %.6g Pa, q %.6g Pa, "
                 "szz %.6g Pa\n",
-                p.size(), forces.pairs(), forces.walls(), part.c_str(), box_text(main_box).c_str(), pressure_of(s), deviatoric_q(s), s(2, 2));
+                p.size(), forces.pairs(), forces.walls(), part.c_str(), box_text(main_box).c_str(), pressure_of(s) + 0.0, deviatoric_q(s),
+                s(2, 2) + 0.0);  // + 0.0: no "-0"
   }
   if (!o.grid.empty())
     std::printf("post-macro: grid %ld x %ld x %ld nodes, cell %g m, kernel width %g m (Lucy, support radius %g m): %.2f s\n", grid.n[0], grid.n[1],
