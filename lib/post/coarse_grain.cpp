@@ -228,6 +228,7 @@ GridFields coarse_grain(const Particles& p, const ContactForceSet& c, const std:
       cb.for_plane(k, [&](long q) {
         const Vec3& a = x0[q];
         const Vec3& lq = l[q];
+        const LucySegment segment(kern, lq);
         double s0 = 0, s1 = 1;  // the part of the segment within the cut-off of this plane
         if (lq[2] != 0) {
           double sa = (zk - cut - a[2]) / lq[2], sb = (zk + cut - a[2]) / lq[2];
@@ -242,7 +243,7 @@ GridFields coarse_grain(const Particles& p, const ContactForceSet& c, const std:
         for (long j = j0; j <= j1; ++j)
           for (long i = i0; i <= i1; ++i) {
             const Vec3 d(o[0] + h * i - a[0], o[1] + h * j - a[1], zk - a[2]);
-            const double w = kern.segment_integral(d, lq);
+            const double w = segment.integral(d);
             if (w > 0) sig[j * nx + i].noalias() += w * fl[q];
           }
       });

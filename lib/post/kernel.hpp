@@ -36,33 +36,56 @@ class LucyKernel {
   double value(const Vec3& r) const { return value_r2(r.squaredNorm()); }
 
   // int_0^1 phi(d - s l) ds: the kernel seen by a field point at offset d from the start of the
-  // segment s l, s in [0, 1] (d = r - x_i for the branch vector l from x_i).
-  double segment_integral(const Vec3& d, const Vec3& l) const {
-    const double L2 = l.squaredNorm();
-    if (L2 == 0) return value(d);
-    const double s0 = d.dot(l) / L2;                                   // foot of the perpendicular
-    const double h2 = std::max(0.0, d.squaredNorm() - s0 * s0 * L2);  // its squared distance from the line
-    if (h2 >= c2_) return 0.0;
-    const double L = std::sqrt(L2);
-    const double half = std::sqrt(c2_ - h2) / L;  // |s - s0| < half inside the support
-    const double sa = std::max(0.0, s0 - half), sb = std::min(1.0, s0 + half);
-    if (sb <= sa) return 0.0;
-    // With u = L (s - s0): r^2 = u^2 + h^2, ds = du / L.
-    return amp_ / L * (antiderivative(L * (sb - s0), h2) - antiderivative(L * (sa - s0), h2));
+  // segment s l, s in [0, 1] (d = r - x_i for the branch vector l from x_i). For many points along
+  // one segment, LucySegment below is faster.
+  double segment_integral(const Vec3& d, const Vec3& l) const;
+
+ private:
+  friend class LucySegment;
+  double w_, c_, c2_, amp_;
+};
+
+// The kernel integrated along one segment s l, s in [0, 1], seen from many field points.
+class LucySegment {
+ public:
+  LucySegment(const LucyKernel& k, const Vec3& l)
+      : k_(k), l_(l), L2_(l.squaredNorm()), L_(std::sqrt(L2_)), inv_L2_(L2_ > 0 ? 1 / L2_ : 0) {}
+
+  // int_0^1 phi(d - s l) ds, d the field point's offset from the segment's start.
+  double integral(const Vec3& d) const {
+    if (L2_ == 0) return k_.value(d);
+    const double c = k_.c_, c2 = k_.c2_;
+    const double s0 = d.dot(l_) * inv_L2_;                          // foot of the perpendicular
+    const double h2 = std::max(0.0, d.squaredNorm() - s0 * s0 * L2_);  // its squared distance from the line
+    if (h2 >= c2) return 0.0;
+    // With u = L (s - s0): r^2 = u^2 + h2, ds = du / L; the support is |u| < sqrt(c^2 - h2).
+    const double half = std::sqrt(c2 - h2);
+    const double u0 = -L_ * s0, u1 = L_ * (1 - s0);
+    const double ua = std::max(u0, -half), ub = std::min(u1, half);
+    if (ub <= ua) return 0.0;
+    const double ra = ua == -half ? c : std::sqrt(ua * ua + h2);  // r = c where the support cuts
+    const double rb = ub == half ? c : std::sqrt(ub * ub + h2);
+    // Differences of the antiderivatives of 1, r^2, r^3 and r^4 between ua and ub.
+    const double ua2 = ua * ua, ub2 = ub * ub, ua3 = ua2 * ua, ub3 = ub2 * ub;
+    const double d1 = ub - ua, d3 = ub3 - ua3, d5 = ub3 * ub2 - ua3 * ua2;
+    const double p2 = d3 / 3 + h2 * d1;
+    const double p4 = d5 / 5 + 2 * h2 * d3 / 3 + h2 * h2 * d1;
+    double p3 = (ub * (2 * ub2 + 5 * h2) * rb - ua * (2 * ua2 + 5 * h2) * ra) / 8;
+    if (h2 > 0) {
+      // 3 h^4 / 8 (asinh(ub/h) - asinh(ua/h)) = 3 h^4 / 8 ln((ub + rb) / (ua + ra)), with
+      // u + r = h^2 / (r - u) for u < 0 (no cancellation).
+      const double ga = ua >= 0 ? ua + ra : h2 / (ra - ua), gb = ub >= 0 ? ub + rb : h2 / (rb - ub);
+      p3 += 3 * h2 * h2 / 8 * std::log(gb / ga);
+    }
+    return k_.amp_ / L_ * (d1 - 6 * p2 / c2 + 8 * p3 / (c2 * c) - 3 * p4 / (c2 * c2));
   }
 
  private:
-  // int (1 - 6 r^2/c^2 + 8 r^3/c^3 - 3 r^4/c^4) du with r^2 = u^2 + h2.
-  double antiderivative(double u, double h2) const {
-    const double u2 = u * u, r2 = u2 + h2;
-    const double p2 = u * (u2 / 3 + h2);                       // int r^2
-    const double p4 = u * (u2 * u2 / 5 + 2 * h2 * u2 / 3 + h2 * h2);  // int r^4
-    double p3 = u / 8 * (2 * u2 + 5 * h2) * std::sqrt(r2);     // int r^3
-    if (h2 > 0) p3 += 3 * h2 * h2 / 8 * std::asinh(u / std::sqrt(h2));
-    return u - 6 * p2 / c2_ + 8 * p3 / (c2_ * c_) - 3 * p4 / (c2_ * c2_);
-  }
-
-  double w_, c_, c2_, amp_;
+  const LucyKernel& k_;
+  Vec3 l_;
+  double L2_, L_, inv_L2_;
 };
+
+inline double LucyKernel::segment_integral(const Vec3& d, const Vec3& l) const { return LucySegment(*this, l).integral(d); }
 
 }  // namespace dem

@@ -118,6 +118,7 @@ void post_macro(const PostOptions& o) {
     ref_time = ref.time;
   }
   const std::vector<Vec3>* u = o.reference.empty() ? nullptr : &d.u;
+  const double read_seconds = seconds_since(t0);
 
   GridSpec grid;
   if (!o.grid.empty()) {
@@ -137,14 +138,17 @@ void post_macro(const PostOptions& o) {
                              o.csv.empty();
   ContactForceSet forces;
   ParticleStress ps;
-  if (stress_wanted) {
-    forces = contact_forces_at_state(cur);
-    ps = particle_stress(p, forces);
-  }
-  const auto t_forces = Clock::now();
+  auto t = Clock::now();
+  if (stress_wanted) forces = contact_forces_at_state(cur);
+  const double force_seconds = seconds_since(t);
+  t = Clock::now();
+  if (stress_wanted) ps = particle_stress(p, forces);
+  const double stress_seconds = seconds_since(t);
+  t = Clock::now();
   GridFields fields;
   if (!o.grid.empty()) fields = coarse_grain(p, forces, u, grid, o.width);
-  const double grid_seconds = seconds_since(t_forces);
+  const double grid_seconds = seconds_since(t);
+  t = Clock::now();
 
   std::ostringstream when;
   when << o.in << " (t = " << cur.time << " s)";
@@ -177,6 +181,8 @@ void post_macro(const PostOptions& o) {
     write_displacement_profile_csv(o.csv, title.str(), displacement_profile(p, d, o.axis, o.bins), o.axis);
   }
 
+  const double write_seconds = seconds_since(t);
+
   if (u != nullptr)
     std::printf("post-macro: %zu particles matched by id, %zu removed since the reference, %zu new; t = %.6g s -> %.6g s\n", d.matched,
                 d.removed, d.added, ref_time, cur.time);
@@ -189,9 +195,10 @@ void post_macro(const PostOptions& o) {
                 s(2, 2) + 0.0);  // + 0.0: no "-0"
   }
   if (!o.grid.empty())
-    std::printf("post-macro: grid %ld x %ld x %ld nodes, cell %g m, kernel width %g m (Lucy, support radius %g m): %.2f s\n", grid.n[0], grid.n[1],
-                grid.n[2], o.cell, o.width, std::sqrt(12.0) * o.width, grid_seconds);
-  std::printf("post-macro: %.2f s\n", seconds_since(t0));
+    std::printf("post-macro: grid %ld x %ld x %ld nodes, cell %g m, kernel width %g m (Lucy, support radius %g m)\n", grid.n[0], grid.n[1],
+                grid.n[2], o.cell, o.width, std::sqrt(12.0) * o.width);
+  std::printf("post-macro: times [s]: reading %.2f, contact forces %.2f, particle stress %.2f, grid %.2f, writing %.2f; total %.2f\n",
+              read_seconds, force_seconds, stress_seconds, grid_seconds, write_seconds, seconds_since(t0));
 }
 
 }  // namespace dem
