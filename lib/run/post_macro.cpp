@@ -104,6 +104,7 @@ void post_macro(const PostOptions& o) {
   const auto t0 = Clock::now();
   const Simulation cur = load_state(o.in);
   const Particles& p = cur.particles;
+  if (p.size() == 0) throw InputError(o.in + ": the checkpoint holds no particles: nothing to post-process");
   const std::vector<Box> regions = o.regions.empty() ? std::vector<Box>{sphere_box(p)} : o.regions;
   const Box& main_box = regions.front();
 
