@@ -2,7 +2,7 @@
 # post-macro on a 1,000,000-particle checkpoint (bench/post_bench.cpp builds it: a lattice of 1 mm
 # spheres, 3e6 contacts, 6 walls, and a reference state for displacements), with 1 and 2 threads;
 # writes bench/results/post.md. Usage: bash bench/run_post_bench.sh [N]   (from the repository
-# root; about 4 minutes on 2 cores, 2 GB of memory and 1 GB of disk in a temporary directory)
+# root; about 3 minutes on 2 cores, 1.5 GB of memory and 1 GB of disk in a temporary directory)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 n=${1:-1000000}
@@ -47,6 +47,13 @@ size=$(( $(stat -c %s "$tmp/post_cur.h5") / 1000000 ))
       echo "| ${what[$c]} | ${nodes:--} | $t | $r | $f | $s | $g | $w | $T | $(( $(cat "$tmp/mem") / 1024 )) MB |"
     done
   done
+  echo
+  echo "Where the time goes: *contact forces* is the neighbour search and one force evaluation on a"
+  echo "copy of the state (a checkpoint keeps the contact history, not the forces), dominated by memory"
+  echo "traffic (copying the state, compacting the contact lists), so a second thread hardly helps;"
+  echo "*grid* is the coarse-graining (each contact's force spread along its branch vector, each node"
+  echo "within 3.46 w), planes of nodes dealt to threads; *writing* is mostly VTK's zlib compression,"
+  echo "single-threaded. The machine is shared: single runs vary by 10-30 %."
   echo
   echo "Command lines (post_cur.h5 and post_ref.h5: \`build/bench/post_bench $n DIR\`):"
   echo
