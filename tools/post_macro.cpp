@@ -61,8 +61,8 @@ int main(int argc, char** argv) {
   app.add_option("--bins", o.bins, "profile bins")->check(CLI::Range(1, 100000));
   app.callback([&] {  // checks across options: a bad command line (exit 2), nothing read or written yet
     o.axis = axis[0] - 'x';
-    for (const std::string& r : regions) o.regions.push_back(dem::parse_region(r));
     try {
+      for (const std::string& r : regions) o.regions.push_back(dem::parse_region(r));
       dem::check_post_options(o);
     } catch (const dem::InputError& e) {
       throw CLI::ValidationError(e.what());

@@ -89,12 +89,17 @@ void check_post_options(const PostOptions& o) {
   if (!o.grid.empty() && !(o.cell > 0 && o.width > 0)) throw InputError("--grid needs --cell and --width, both positive");
   if (o.axis < 0 || o.axis > 2) throw InputError("--axis must be x, y or z");
   if (o.bins < 1) throw InputError("--bins must be at least 1");
+  auto canonical = [](const std::string& f) {
+    std::error_code ec;
+    const std::filesystem::path p = std::filesystem::weakly_canonical(f, ec);
+    return ec ? std::filesystem::path(f) : p;
+  };
   std::set<std::filesystem::path> seen;
   for (const std::string* f : {&o.reference, &o.in})
-    if (!f->empty()) seen.insert(std::filesystem::weakly_canonical(*f));
+    if (!f->empty()) seen.insert(canonical(*f));
   for (const std::string* f : {&o.vtk, &o.csv, &o.stress_csv, &o.average_csv, &o.grid, &o.chains}) {
     if (f->empty()) continue;
-    if (!seen.insert(std::filesystem::weakly_canonical(*f)).second)
+    if (!seen.insert(canonical(*f)).second)
       throw InputError("output " + *f + " is named twice, or is an input: give each output its own file");
   }
 }
