@@ -262,10 +262,6 @@ void write_pvd(const std::string& path, const std::vector<PvdEntry>& entries) {
   });
 }
 
-}  // namespace dem
-
-namespace dem {
-
 void write_image_vti(const std::string& path, const Vec3& origin, double spacing, const long dims[3], const std::vector<VtkArray>& arrays) {
   auto image = vtkSmartPointer<vtkImageData>::New();
   image->SetOrigin(origin[0], origin[1], origin[2]);
