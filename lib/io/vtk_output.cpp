@@ -9,6 +9,7 @@
 #include <vtkExecutive.h>
 #include <vtkFieldData.h>
 #include <vtkIdTypeArray.h>
+#include <vtkImageData.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
@@ -17,10 +18,12 @@
 #include <vtkTypeInt32Array.h>
 #include <vtkTypeInt64Array.h>
 #include <vtkUnstructuredGrid.h>
+#include <vtkXMLImageDataWriter.h>
 #include <vtkXMLPolyDataWriter.h>
 #include <vtkXMLUnstructuredGridWriter.h>
 #include <vtkXMLWriter.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -32,6 +35,7 @@
 #include <stdexcept>
 
 #include "core/error.hpp"
+#include "io/atomic_write.hpp"
 
 namespace dem {
 
@@ -44,22 +48,6 @@ void ensure_parent_dir(const std::string& path) {
 }
 
 namespace {
-
-// Writes through `write_tmp(tmp)` to a temporary file and renames it onto `path`, so `path` holds
-// either the old or the complete new content; the temporary never outlives a failure.
-template <class WriteTmp>
-void write_atomically(const std::string& path, WriteTmp&& write_tmp) {
-  ensure_parent_dir(path);
-  const std::string tmp = path + ".tmp";
-  try {
-    write_tmp(tmp);
-    if (std::rename(tmp.c_str(), path.c_str()) != 0)
-      throw IoError(path + ": cannot rename the finished file into place: " + std::strerror(errno));
-  } catch (...) {
-    std::remove(tmp.c_str());
-    throw;
-  }
-}
 
 // Receives the writer's error messages: VTK would otherwise print them to stderr, while we report
 // the failure once, as an IoError carrying the message.
@@ -124,6 +112,22 @@ vtkSmartPointer<vtkStringArray> string_array(const char* name, const std::vector
   return a;
 }
 
+const char* const kTensorComponents[9] = {"XX", "XY", "XZ", "YX", "YY", "YZ", "ZX", "ZY", "ZZ"};
+
+vtkSmartPointer<vtkDoubleArray> data_array(const VtkArray& a, std::size_t tuples) {
+  if (a.components < 1 || a.values.size() != tuples * static_cast<std::size_t>(a.components))
+    throw std::invalid_argument("VTK array " + a.name + ": " + std::to_string(a.values.size()) + " values for " + std::to_string(tuples) +
+                                " tuples of " + std::to_string(a.components));
+  auto v = vtkSmartPointer<vtkDoubleArray>::New();
+  v->SetName(a.name.c_str());
+  v->SetNumberOfComponents(a.components);
+  if (a.components == 9)
+    for (int c = 0; c < 9; ++c) v->SetComponentName(c, kTensorComponents[c]);
+  v->SetNumberOfTuples(static_cast<vtkIdType>(tuples));
+  std::copy(a.values.begin(), a.values.end(), v->GetPointer(0));
+  return v;
+}
+
 std::string xml_escape(const std::string& s) {
   std::string out;
   out.reserve(s.size());
@@ -142,7 +146,7 @@ std::string xml_escape(const std::string& s) {
 }  // namespace
 
 void write_particles_vtu(const std::string& path, const Particles& p, const std::vector<std::string>& material_names,
-                         const std::vector<Vec3>* displacement) {
+                         const std::vector<Vec3>* displacement, const std::vector<VtkArray>& extra) {
   const std::size_t n = p.size();
   if (displacement != nullptr && displacement->size() != n)
     throw std::invalid_argument("write_particles_vtu: displacement has " + std::to_string(displacement->size()) +
@@ -199,6 +203,7 @@ void write_particles_vtu(const std::string& path, const Particles& p, const std:
     for (vtkIdType i = 0; i < vn; ++i) magnitude->SetValue(i, (*displacement)[i].norm());
     pd->AddArray(magnitude);
   }
+  for (const VtkArray& a : extra) pd->AddArray(data_array(a, n));
   grid->GetFieldData()->AddArray(string_array("material_names", material_names));
 
   write_atomically(path, [&](const std::string& tmp) {
@@ -254,6 +259,46 @@ void write_pvd(const std::string& path, const std::vector<PvdEntry>& entries) {
         << "</VTKFile>\n";
     out.close();
     if (!out) throw IoError(path + ": writing failed (disk full or file system error?)");
+  });
+}
+
+void write_image_vti(const std::string& path, const Vec3& origin, double spacing, const long dims[3], const std::vector<VtkArray>& arrays) {
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetOrigin(origin[0], origin[1], origin[2]);
+  image->SetSpacing(spacing, spacing, spacing);
+  image->SetDimensions(static_cast<int>(dims[0]), static_cast<int>(dims[1]), static_cast<int>(dims[2]));
+  const std::size_t n = static_cast<std::size_t>(dims[0]) * dims[1] * dims[2];
+  for (const VtkArray& a : arrays) image->GetPointData()->AddArray(data_array(a, n));
+  write_atomically(path, [&](const std::string& tmp) {
+    auto writer = vtkSmartPointer<vtkXMLImageDataWriter>::New();
+    run_xml_writer(writer, image, path, tmp);
+  });
+}
+
+void write_lines_vtp(const std::string& path, const std::vector<Vec3>& points, const std::vector<long>& lines,
+                     const std::vector<VtkArray>& point_data, const std::vector<VtkArray>& cell_data) {
+  const auto np = static_cast<vtkIdType>(points.size());
+  const auto nl = static_cast<vtkIdType>(lines.size() / 2);
+  auto pts = vtkSmartPointer<vtkPoints>::New();
+  pts->SetDataTypeToDouble();
+  pts->SetNumberOfPoints(np);
+  for (vtkIdType i = 0; i < np; ++i) pts->SetPoint(i, points[i].data());
+  auto offsets = vtkSmartPointer<vtkIdTypeArray>::New();
+  auto connectivity = vtkSmartPointer<vtkIdTypeArray>::New();
+  offsets->SetNumberOfValues(nl + 1);
+  connectivity->SetNumberOfValues(2 * nl);
+  for (vtkIdType k = 0; k <= nl; ++k) offsets->SetValue(k, 2 * k);
+  for (vtkIdType k = 0; k < 2 * nl; ++k) connectivity->SetValue(k, lines[k]);
+  auto cells = vtkSmartPointer<vtkCellArray>::New();
+  cells->SetData(offsets, connectivity);
+  auto poly = vtkSmartPointer<vtkPolyData>::New();
+  poly->SetPoints(pts);
+  poly->SetLines(cells);
+  for (const VtkArray& a : point_data) poly->GetPointData()->AddArray(data_array(a, points.size()));
+  for (const VtkArray& a : cell_data) poly->GetCellData()->AddArray(data_array(a, lines.size() / 2));
+  write_atomically(path, [&](const std::string& tmp) {
+    auto writer = vtkSmartPointer<vtkXMLPolyDataWriter>::New();
+    run_xml_writer(writer, poly, path, tmp);
   });
 }
 

@@ -7,20 +7,40 @@
 #include <vector>
 
 #include "core/types.hpp"
+#include "io/atomic_write.hpp"
 #include "state/particles.hpp"
 #include "walls/wall.hpp"
 
 namespace dem {
 
-// Creates the directories above `path` if missing; throws IoError naming `path` when it cannot.
-void ensure_parent_dir(const std::string& path);
+// ensure_parent_dir and write_atomically: io/atomic_write.hpp.
+
+// A named data array: `components` values per point or cell, tuple after tuple (a 3x3 tensor is
+// 9 components, row-major: xx, xy, xz, yx, ...; ParaView shows them as a tensor).
+struct VtkArray {
+  std::string name;
+  int components = 1;
+  std::vector<double> values;
+};
 
 // One vertex per particle. Point data: id (int64), radius, velocity, angular_velocity,
 // material (int32 index into `material_names`, which is stored as field data "material_names"),
 // and, when `displacement` is given (one vector per particle, same order), displacement and
-// displacement_magnitude. Throws IoError when the file cannot be written.
+// displacement_magnitude, then the `extra` arrays (one tuple per particle, same order). Throws
+// IoError when the file cannot be written.
 void write_particles_vtu(const std::string& path, const Particles& p, const std::vector<std::string>& material_names,
-                         const std::vector<Vec3>* displacement = nullptr);
+                         const std::vector<Vec3>* displacement = nullptr, const std::vector<VtkArray>& extra = {});
+
+// Image data (.vti): a regular grid of dims[0] x dims[1] x dims[2] points from `origin` in steps
+// of `spacing`, point data `arrays` (x fastest, then y, then z). Throws IoError when the file
+// cannot be written.
+void write_image_vti(const std::string& path, const Vec3& origin, double spacing, const long dims[3],
+                     const std::vector<VtkArray>& arrays);
+
+// Polydata (.vtp) of line segments between `points` (lines[2k], lines[2k+1]), with point and cell
+// data. Throws IoError when the file cannot be written.
+void write_lines_vtp(const std::string& path, const std::vector<Vec3>& points, const std::vector<long>& lines,
+                     const std::vector<VtkArray>& point_data, const std::vector<VtkArray>& cell_data);
 
 // One polygon per wall at its position at `time`. Cell data: wall_index, material (int32);
 // field data "wall_names". Throws IoError when the file cannot be written.

@@ -1,4 +1,4 @@
-# Demo pipeline: scene -> gen-primary -> run-stage (shake) -> post-macro -> VTK + PNG plot.
+# Demo pipeline: scene -> gen-primary -> run-stage (shake) -> post-macro -> VTK + PNG plots.
 DEMO_DIR := $(OUT)/demo
 DEMO_SCENE := workflows/demo/scene.toml
 
@@ -16,5 +16,15 @@ $(DEMO_DIR)/displacement.vtu $(DEMO_DIR)/profile.csv &: $(DEMO_DIR)/settled.h5 $
 $(DEMO_DIR)/profile.png: $(DEMO_DIR)/profile.csv scripts/plot_profile.py
 	$(PYTHON) scripts/plot_profile.py $(DEMO_DIR)/profile.csv $@
 
+# Stress in the settled bed: per particle, force chains, coarse-grained fields (kernel width 2 mm,
+# about a radius, on a 2 mm grid), a profile along z and its plot.
+DEMO_STRESS := $(DEMO_DIR)/stress.vtu $(DEMO_DIR)/chains.vtp $(DEMO_DIR)/fields.vti $(DEMO_DIR)/stress.csv
+$(DEMO_STRESS) &: $(DEMO_DIR)/settled.h5 $(BIN)/post-macro
+	$(BIN)/post-macro --in $(DEMO_DIR)/settled.h5 --vtk $(DEMO_DIR)/stress.vtu --chains $(DEMO_DIR)/chains.vtp \
+	  --grid $(DEMO_DIR)/fields.vti --cell 0.002 --width 0.002 --stress-csv $(DEMO_DIR)/stress.csv --axis z --bins 5
+
+$(DEMO_DIR)/stress.png: $(DEMO_DIR)/stress.csv scripts/plot_stress.py
+	$(PYTHON) scripts/plot_stress.py $(DEMO_DIR)/stress.csv $@
+
 CASES += demo
-demo-outputs: $(DEMO_DIR)/profile.png $(DEMO_DIR)/displacement.vtu
+demo-outputs: $(DEMO_DIR)/profile.png $(DEMO_DIR)/displacement.vtu $(DEMO_DIR)/stress.png $(DEMO_STRESS)
