@@ -13,6 +13,8 @@
 #include "post/displacement.hpp"
 #include "post/kernel.hpp"
 
+#include "post_lattice.hpp"
+
 namespace dem {
 namespace {
 
@@ -167,23 +169,9 @@ TEST(CoarseGrain, AffineDeformationRecoveredToRoundOff) {
 TEST(CoarseGrain, LatticeFieldsEqualForcePerArea) {
   const int n = 14;
   const double s = 2e-3, a = 1e-3, Fx = 0.5, Fy = 0.3, Fz = 0.9, tau = 0.05;
-  Particles p;
-  auto slot = [&](int i, int j, int k) { return (k * n + j) * n + i; };
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) p.add(slot(i, j, k), Vec3(i, j, k) * s, a, 2500, 0);
-  ContactForceSet c;
-  auto contact = [&](int i, int j, const Vec3& f) {
-    c.pair_i.push_back(i), c.pair_j.push_back(j), c.pair_force.push_back(f), c.pair_normal.push_back(Vec3::UnitX()),
-        c.pair_bonded.push_back(0);
-  };
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        if (i + 1 < n) contact(slot(i, j, k), slot(i + 1, j, k), Vec3(-Fx, tau, 0));
-        if (j + 1 < n) contact(slot(i, j, k), slot(i, j + 1, k), Vec3(0, -Fy, 0));
-        if (k + 1 < n) contact(slot(i, j, k), slot(i, j, k + 1), Vec3(0, 0, -Fz));
-      }
+  const test::LoadedLattice lattice = test::loaded_lattice(n, s, a, Fx, Fy, Fz, tau);
+  const Particles& p = lattice.p;
+  const ContactForceSet& c = lattice.c;
   const double w = s;
   const Box box{Vec3::Constant(0), Vec3::Constant((n - 1) * s)};
   const GridSpec grid = grid_covering(box, s / 2);

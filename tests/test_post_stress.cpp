@@ -12,6 +12,8 @@
 #include "post/stress.hpp"
 #include "sim/simulation.hpp"
 
+#include "post_lattice.hpp"
+
 namespace dem {
 namespace {
 
@@ -107,22 +109,9 @@ TEST(LoveWeber, WallContactActsAtThePointOnTheWall) {
 TEST(LoveWeber, CubicLatticeEqualsForcePerArea) {
   const int n = 6;
   const double s = 2e-3, a = 1e-3, Fx = 0.5, Fy = 0.3, Fz = 0.9, tau = 0.05;
-  Particles p;
-  auto slot = [&](int i, int j, int k) { return (k * n + j) * n + i; };
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) p.add(slot(i, j, k), Vec3(i, j, k) * s, a, 2500, 0);
-  ContactForceSet c;
-  auto contact = [&](int i, int j, const Vec3& f, const Vec3& nrm) {
-    c.pair_i.push_back(i), c.pair_j.push_back(j), c.pair_force.push_back(f), c.pair_normal.push_back(nrm), c.pair_bonded.push_back(0);
-  };
-  for (int k = 0; k < n; ++k)
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        if (i + 1 < n) contact(slot(i, j, k), slot(i + 1, j, k), Vec3(-Fx, tau, 0), Vec3::UnitX());
-        if (j + 1 < n) contact(slot(i, j, k), slot(i, j + 1, k), Vec3(0, -Fy, 0), Vec3::UnitY());
-        if (k + 1 < n) contact(slot(i, j, k), slot(i, j, k + 1), Vec3(0, 0, -Fz), Vec3::UnitZ());
-      }
+  const test::LoadedLattice lattice = test::loaded_lattice(n, s, a, Fx, Fy, Fz, tau);
+  const Particles& p = lattice.p;
+  const ContactForceSet& c = lattice.c;
   const ParticleStress ps = particle_stress(p, c);
   // Particles 1..4 along each axis, each with its whole cell: [0.5 s, 4.5 s]^3.
   const Box box{Vec3::Constant(0.5 * s), Vec3::Constant(4.5 * s)};

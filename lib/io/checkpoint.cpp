@@ -425,7 +425,7 @@ void write_all(Writer& w, const Simulation& sim, const CheckpointMeta& meta) {
     // Time tables are stored once for consecutive walls sharing one (the elements of a mesh).
     if (m.table_time.empty()) {
       table_index.push_back(-1);
-    } else if (k > 0 && !table_index.empty() && table_index.back() >= 0 && sim.walls[k - 1].motion.table_time == m.table_time &&
+    } else if (k > 0 && table_index.back() >= 0 && sim.walls[k - 1].motion.table_time == m.table_time &&
                sim.walls[k - 1].motion.table_offset == m.table_offset) {
       table_index.push_back(table_index.back());
     } else {

@@ -383,6 +383,12 @@ Vec3 direction_or(TableReader& r, const std::string& key, const Vec3& def) {
   return a;
 }
 
+// A required direction, normalised.
+Vec3 unit_direction(TableReader& r, const std::string& key) {
+  r.required(key);
+  return direction_or(r, key, Vec3::Zero()).normalized();
+}
+
 int segments_of(TableReader& r, const std::string& key) {
   return static_cast<int>(r.integer_or(key, kDefaultSegments, 3, kMaxMeshElements));
 }
@@ -688,9 +694,7 @@ void read_motion(TableReader& r, MotionSpec& ms) {
     for (Vec3& d : m.table_offset) d -= first;
   } else if (type == "vibrate") {
     ms.part = Part::Vibrate;
-    const Vec3 d = r.vec3("direction");
-    if (!(d.norm() > 0)) r.fail("direction", "the direction must be a non-zero vector");
-    m.direction = d.normalized();
+    m.direction = unit_direction(r, "direction");
     m.frequency = r.number("frequency", 0, kInf, "Hz", true);
     const bool amp = r.has("amplitude"), acc = r.has("acceleration");
     if (amp == acc) r.fail(amp ? "acceleration" : "amplitude", "give exactly one of amplitude [m] and acceleration [m/s^2]");
@@ -703,9 +707,7 @@ void read_motion(TableReader& r, MotionSpec& ms) {
     }
   } else if (type == "rotate") {
     ms.part = Part::Rotate;
-    const Vec3 a = r.vec3("axis");
-    if (!(a.norm() > 0)) r.fail("axis", "the axis must be a non-zero vector");
-    m.axis = a.normalized();
+    m.axis = unit_direction(r, "axis");
     m.centre = r.vec3("centre");
     const double rpm = r.number("rpm", -1e6, 1e6, "rev/min");
     if (rpm == 0) r.fail("rpm", "a rotation needs a non-zero speed (use type = \"fixed\" to stop a wall)");
@@ -772,11 +774,7 @@ void read_stages(TableReader& top, Scene& sc) {
       sv.target_stress = sr.number("target_stress", 0, kInf, "Pa", true);
       sv.max_speed = sr.number("max_speed", 0, kInf, "m/s", true);
       sv.gain = sr.number_or("gain", sv.gain, 0, 1, "(dimensionless)", true);
-      if (sr.has("direction")) {
-        const Vec3 d = sr.vec3("direction");
-        if (!(d.norm() > 0)) sr.fail("direction", "the direction must be a non-zero vector");
-        sv.direction = d.normalized();
-      }
+      if (sr.has("direction")) sv.direction = unit_direction(sr, "direction");
       sr.finish();
       s.servos.push_back(sv);
     }

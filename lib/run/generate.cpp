@@ -136,7 +136,7 @@ void compact(const GenerateOptions& o) {
     servos.push_back(g);
   }
   auto stress = [&]() {
-    const std::vector<Vec3> f = sim.wall_forces();
+    const std::vector<WallLoad> f = sim.wall_loads();
     double s = 0;
     for (const ServoGroup& g : servos) s += g.stress(f);
     return s / servos.size();
@@ -157,7 +157,7 @@ void compact(const GenerateOptions& o) {
       ++steps;
       progress.update(steps, sim.time);
       if (steps % check != 0) continue;
-      const std::vector<Vec3> now = sim.wall_forces();
+      const std::vector<WallLoad> now = sim.wall_loads();
       bool within = true;
       for (const ServoGroup& g : servos) within = within && std::abs(g.stress(now) / c.target_stress - 1) <= 0.02;
       done = within && kinetic_ratio(sim) < c.settle.ke_ratio;

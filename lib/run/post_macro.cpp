@@ -14,6 +14,8 @@
 #include "post/coarse_grain.hpp"
 #include "post/contact_forces.hpp"
 #include "post/displacement.hpp"
+#include "post/kernel.hpp"
+#include "run/setup.hpp"
 
 namespace dem {
 
@@ -43,8 +45,7 @@ Simulation load_state(const std::string& path) {
   for (std::size_t k = 0; same && k < stored.size(); ++k) same = stored[k].name == scene.materials[k].name;
   if (!same) throw InputError(path + ": the materials stored in the checkpoint differ from those of its stored scene");
   sim.materials = MaterialTable(scene.materials, scene.mixing, scene.pairs);
-  sim.params.skin = scene.simulation.skin;
-  sim.params.max_overlap = scene.simulation.max_overlap;
+  sim.params = params_from(scene);
   return sim;
 }
 
@@ -202,7 +203,7 @@ void post_macro(const PostOptions& o) {
   }
   if (!o.grid.empty())
     std::printf("post-macro: grid %ld x %ld x %ld nodes, cell %g m, kernel width %g m (Lucy, support radius %g m)\n", grid.n[0], grid.n[1],
-                grid.n[2], o.cell, o.width, std::sqrt(12.0) * o.width);
+                grid.n[2], o.cell, o.width, LucyKernel(o.width).cutoff());
   std::printf("post-macro: times [s]: reading %.2f, contact forces %.2f, particle stress %.2f, grid %.2f, writing %.2f; total %.2f\n",
               read_seconds, force_seconds, stress_seconds, grid_seconds, write_seconds, seconds_since(t0));
 }

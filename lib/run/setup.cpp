@@ -12,8 +12,6 @@
 
 namespace dem {
 
-namespace {
-
 SimParams params_from(const Scene& scene) {
   SimParams p;
   p.gravity = scene.simulation.gravity;
@@ -23,8 +21,6 @@ SimParams params_from(const Scene& scene) {
   p.max_overlap = scene.simulation.max_overlap;
   return p;
 }
-
-}  // namespace
 
 Simulation simulation_from_scene(const Scene& scene) {
   Simulation sim;

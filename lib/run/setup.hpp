@@ -6,6 +6,9 @@
 
 namespace dem {
 
+// Body forces, global damping, skin and overlap limit of a scene ([simulation]).
+SimParams params_from(const Scene& scene);
+
 // Materials, walls (at rest) and body forces from the scene; no particles.
 Simulation simulation_from_scene(const Scene& scene);
 

@@ -147,7 +147,7 @@ void run_stage(const StageOptions& o) {
   progress.finish(sim.step - run.stage_start_step, sim.time);
   if (!servos.empty()) {
     // The servo walls stop where they are; report what they hold.
-    const std::vector<Vec3> f = sim.wall_forces();
+    const std::vector<WallLoad> f = sim.wall_loads();
     for (std::size_t k = 0; k < servos.size(); ++k) {
       for (std::size_t e : servos[k].elements) sim.walls[e].start_motion(WallMotion{}, sim.time);
       if (!o.quiet)

@@ -53,7 +53,7 @@ WallLog::~WallLog() {
 
 void WallLog::record(const Simulation& sim, std::int64_t steps_done, bool last) {
   if (!file_ || (steps_done % every_ != 0 && !last)) return;
-  const std::vector<WallLoad> loads = sim.wall_loads();
+  const std::vector<WallLoad> loads = sim.wall_loads(true);
   std::vector<WallLoad> sum(names_.size());
   for (std::size_t e = 0; e < loads.size(); ++e) {
     WallLoad& s = sum[group_of_[e]];

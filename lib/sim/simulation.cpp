@@ -222,31 +222,18 @@ double Simulation::kinetic_energy() const {
   return e;
 }
 
-// Both read the candidates directly (no compaction: the stress servo calls them every step).
-// key_j (the wall index) is valid even before the first step after a restart, when slots are not.
-std::vector<Vec3> Simulation::wall_forces() const {
-  std::vector<Vec3> f(walls.size(), Vec3::Zero());
-  for (std::size_t k = 0; k < walls_.size(); ++k)
-    if (walls_.active[k]) f[walls_.key_j[k]] -= walls_.force(k);
-  return f;
-}
-
-std::vector<int> Simulation::wall_contact_counts() const {
-  std::vector<int> n(walls.size(), 0);
-  for (std::size_t k = 0; k < walls_.size(); ++k) n[walls_.key_j[k]] += walls_.active[k];
-  return n;
-}
-
-std::vector<WallLoad> Simulation::wall_loads() const {
+// Reads the candidates directly (no compaction: the stress servo calls it every step). key_j (the
+// wall index) is valid even before the first step after a restart, when slots are not: torques,
+// which need the particle's slot, are for after a step.
+std::vector<WallLoad> Simulation::wall_loads(bool torques) const {
   std::vector<WallLoad> load(walls.size());
   for (std::size_t k = 0; k < walls_.size(); ++k) {
     if (!walls_.active[k]) continue;
     WallLoad& l = load[walls_.key_j[k]];
     const Vec3 f = -walls_.force(k);
-    const Vec3 c = closest_point(wall_geometry_[walls_.slot_j[k]], particles.x[walls_.slot_i[k]]);
     l.force += f;
-    l.torque += c.cross(f);
     ++l.contacts;
+    if (torques) l.torque += closest_point(wall_geometry_[walls_.slot_j[k]], particles.x[walls_.slot_i[k]]).cross(f);
   }
   return load;
 }

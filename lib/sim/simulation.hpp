@@ -24,7 +24,7 @@ struct SimParams {
 // What the particles exert on one wall element this step.
 struct WallLoad {
   Vec3 force = Vec3::Zero();   // [N]
-  Vec3 torque = Vec3::Zero();  // about the origin of coordinates [N m]
+  Vec3 torque = Vec3::Zero();  // about the origin of coordinates [N m] (wall_loads(true) only)
   int contacts = 0;
 };
 
@@ -62,10 +62,9 @@ class Simulation {
   std::int64_t neighbour_builds() const { return neighbours_.builds(); }
 
   double kinetic_energy() const;  // translational + rotational [J]
-  std::vector<Vec3> wall_forces() const;  // force on each wall this step [N]
-  std::vector<int> wall_contact_counts() const;  // contacts on each wall this step
-  // Force, torque about the origin (contact point x force) and contacts per wall element.
-  std::vector<WallLoad> wall_loads() const;
+  // Force, contacts and (if `torques`, only after a step) torque about the origin (contact point x
+  // force) per wall element this step.
+  std::vector<WallLoad> wall_loads(bool torques = false) const;
   const std::vector<WallGeometry>& wall_geometry() const { return wall_geometry_; }
 
  private:

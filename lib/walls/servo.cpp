@@ -15,18 +15,17 @@ double polygon_area(const std::vector<Vec3>& v) {
   return 0.5 * twice.norm();
 }
 
-double ServoGroup::stress(const std::vector<Vec3>& element_forces) const {
+double ServoGroup::stress(const std::vector<WallLoad>& loads) const {
   double f = 0;
-  for (std::size_t e : elements) f -= element_forces[e].dot(inward);
+  for (std::size_t e : elements) f -= loads[e].force.dot(inward);
   return f / area;
 }
 
-double ServoGroup::speed(const std::vector<Vec3>& element_forces, const std::vector<int>& element_contacts, double dt,
-                         double k_max, double c_max) const {
+double ServoGroup::speed(const std::vector<WallLoad>& loads, double dt, double k_max, double c_max) const {
   int n = 0;
-  for (std::size_t e : elements) n += element_contacts[e];
+  for (std::size_t e : elements) n += loads[e].contacts;
   if (n == 0) return max_speed;
-  const double error = (target - stress(element_forces)) * area;  // [N]
+  const double error = (target - stress(loads)) * area;  // [N]
   return std::clamp(gain * error / (n * (k_max * dt + c_max)), -max_speed, max_speed);
 }
 
@@ -66,11 +65,10 @@ void servo_constants(const Simulation& sim, double& k_max, double& c_max) {
 }
 
 void drive_servos(Simulation& sim, const std::vector<ServoGroup>& groups, double k_max, double c_max) {
-  const std::vector<Vec3> f = sim.wall_forces();
-  const std::vector<int> n = sim.wall_contact_counts();
+  const std::vector<WallLoad> loads = sim.wall_loads();
   for (const ServoGroup& g : groups) {
     WallMotion m;
-    m.velocity = g.speed(f, n, sim.dt, k_max, c_max) * g.inward;
+    m.velocity = g.speed(loads, sim.dt, k_max, c_max) * g.inward;
     for (std::size_t e : g.elements) sim.walls[e].start_motion(m, sim.time);
   }
 }

@@ -11,6 +11,7 @@
 namespace dem {
 
 class Simulation;
+struct WallLoad;
 
 // Area of a convex planar polygon [m^2].
 double polygon_area(const std::vector<Vec3>& v);
@@ -24,14 +25,13 @@ struct ServoGroup {
   double gain = 0.2;                  // fraction of the force error corrected per step
 
   // Mean normal stress the particles exert on the group: -sum F . inward / area [Pa]
-  // (`element_forces`: Simulation::wall_forces()).
-  double stress(const std::vector<Vec3>& element_forces) const;
+  // (`loads`: Simulation::wall_loads()).
+  double stress(const std::vector<WallLoad>& loads) const;
   // Velocity along `inward` for the next step. A velocity change dv changes the group's force at
   // once by C dv (dashpots) and by K v dt per step (springs), with K = n k_max and C = n c_max
   // over its n contacts; `gain` = 0.2 corrects about 20 % of the force error per step without
   // chattering. A group that touches nothing approaches at full speed.
-  double speed(const std::vector<Vec3>& element_forces, const std::vector<int>& element_contacts, double dt, double k_max,
-               double c_max) const;
+  double speed(const std::vector<WallLoad>& loads, double dt, double k_max, double c_max) const;
 };
 
 // The walls whose names match `pattern` (a wall or group name), at time t, with their total area

@@ -12,6 +12,7 @@
 #include <string_view>
 
 #include "core/error.hpp"
+#include "io/atomic_write.hpp"
 #include "walls/wall.hpp"
 
 namespace dem {
@@ -188,12 +189,15 @@ void put_float(std::string& out, double x) {
   put_le32(out, bits);
 }
 
+// Never a half-written STL under `path` (io/atomic_write.hpp).
 void write_file(const std::string& path, const std::string& bytes) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) fail(path, "cannot open for writing");
-  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-  out.close();
-  if (!out) fail(path, "write failed (disk full?)");
+  write_atomically(path, [&](const std::string& tmp) {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) fail(path, "cannot open " + tmp + " for writing");
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    out.close();
+    if (!out) fail(path, "write failed (disk full?)");
+  });
 }
 
 }  // namespace
