@@ -1,21 +1,16 @@
 #!/usr/bin/env python3
 """Plot a post-macro displacement profile (CSV) to PNG: mean displacement components versus height."""
-import os
 import sys
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+from post_table import read_table, save_atomically  # noqa: E402
 
 
 def main(csv_path: str, png_path: str) -> None:
-    with open(csv_path) as f:
-        title = f.readline().lstrip("# ").strip()
-        header = f.readline().strip().split(",")
-    data = np.loadtxt(csv_path, delimiter=",", skiprows=2, ndmin=2)
-    col = {name: k for k, name in enumerate(header)}
+    title, header, data, col = read_table(csv_path)
     axis = header[0].split("_")[0]
     fig, ax = plt.subplots(figsize=(5, 4.5), dpi=120)
     used = data[:, col["count"]] > 0
@@ -27,10 +22,8 @@ def main(csv_path: str, png_path: str) -> None:
     ax.set_ylabel(f"{axis} [mm]")
     ax.set_title(title, fontsize=7, wrap=True)
     ax.legend()
-    fig.tight_layout()
-    fig.savefig(png_path + ".tmp.png")
+    save_atomically(fig, png_path)
     plt.close(fig)
-    os.replace(png_path + ".tmp.png", png_path)
 
 
 if __name__ == "__main__":

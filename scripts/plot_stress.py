@@ -10,7 +10,6 @@ negative normal stresses and a positive pressure p = -trace/3 (docs/post.md).
 
 usage: plot_stress.py TABLE.csv OUT.png
 """
-import os
 import sys
 
 import matplotlib
@@ -18,14 +17,11 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+from post_table import read_table, save_atomically  # noqa: E402
 
 
 def main(csv_path: str, png_path: str) -> None:
-    with open(csv_path) as f:
-        title = f.readline().lstrip("# ").strip()
-        header = f.readline().strip().split(",")
-    data = np.loadtxt(csv_path, delimiter=",", skiprows=2, ndmin=2)
-    col = {name: k for k, name in enumerate(header)}
+    title, header, data, col = read_table(csv_path)
     fig, ax = plt.subplots(figsize=(5.5, 4.5), dpi=120)
     names = (("sxx", r"$\sigma_{xx}$"), ("syy", r"$\sigma_{yy}$"), ("szz", r"$\sigma_{zz}$"), ("pressure", "$p$"))
     if header[0] == "region":  # box averages
@@ -48,10 +44,8 @@ def main(csv_path: str, png_path: str) -> None:
         ax.set_ylabel(f"{axis} [mm]")
     ax.set_title(title, fontsize=6, wrap=True)
     ax.legend()
-    fig.tight_layout()
-    fig.savefig(png_path + ".tmp.png")
+    save_atomically(fig, png_path)
     plt.close(fig)
-    os.replace(png_path + ".tmp.png", png_path)
 
 
 if __name__ == "__main__":

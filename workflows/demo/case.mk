@@ -13,7 +13,7 @@ $(DEMO_DIR)/displacement.vtu $(DEMO_DIR)/profile.csv &: $(DEMO_DIR)/settled.h5 $
 	$(BIN)/post-macro --reference $(DEMO_DIR)/settled.h5 --in $(DEMO_DIR)/shaken.h5 \
 	  --vtk $(DEMO_DIR)/displacement.vtu --csv $(DEMO_DIR)/profile.csv --axis z --bins 10
 
-$(DEMO_DIR)/profile.png: $(DEMO_DIR)/profile.csv scripts/plot_profile.py
+$(DEMO_DIR)/profile.png: $(DEMO_DIR)/profile.csv scripts/plot_profile.py scripts/post_table.py
 	$(PYTHON) scripts/plot_profile.py $(DEMO_DIR)/profile.csv $@
 
 # Stress in the settled bed: per particle, force chains, coarse-grained fields (kernel width 2 mm,
@@ -23,7 +23,7 @@ $(DEMO_STRESS) &: $(DEMO_DIR)/settled.h5 $(BIN)/post-macro
 	$(BIN)/post-macro --in $(DEMO_DIR)/settled.h5 --vtk $(DEMO_DIR)/stress.vtu --chains $(DEMO_DIR)/chains.vtp \
 	  --grid $(DEMO_DIR)/fields.vti --cell 0.002 --width 0.002 --stress-csv $(DEMO_DIR)/stress.csv --axis z --bins 5
 
-$(DEMO_DIR)/stress.png: $(DEMO_DIR)/stress.csv scripts/plot_stress.py
+$(DEMO_DIR)/stress.png: $(DEMO_DIR)/stress.csv scripts/plot_stress.py scripts/post_table.py
 	$(PYTHON) scripts/plot_stress.py $(DEMO_DIR)/stress.csv $@
 
 CASES += demo

@@ -1,0 +1,21 @@
+"""Shared by the plotting scripts: reading post-macro's CSV tables and saving a figure atomically."""
+import os
+
+import numpy as np
+
+
+def read_table(csv_path: str):
+    """post-macro's CSV: a '# title' line, a header line, then numbers. Returns (title, header,
+    data as a 2-D array, column index by name)."""
+    with open(csv_path) as f:
+        title = f.readline().lstrip("# ").strip()
+        header = f.readline().strip().split(",")
+    data = np.loadtxt(csv_path, delimiter=",", skiprows=2, ndmin=2)
+    return title, header, data, {name: k for k, name in enumerate(header)}
+
+
+def save_atomically(fig, png_path: str) -> None:
+    """Never a half-written PNG under png_path (make would take it for a finished output)."""
+    fig.tight_layout()
+    fig.savefig(png_path + ".tmp.png")
+    os.replace(png_path + ".tmp.png", png_path)
