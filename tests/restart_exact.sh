@@ -8,7 +8,7 @@ scene=$src/data/small.toml
 set -e
 "$bin/gen-primary" --scene "$scene" --out "$tmp/start.h5" --quiet
 "$bin/run-stage" --scene "$scene" --stage long --in "$tmp/start.h5" --out "$tmp/full.h5" --vtk "$tmp/vtk_full" \
-  --wall-forces "$tmp/full.csv" --wall-forces-every 50 --quiet
+  --wall-forces "$tmp/full.csv" --wall-forces-every 50 --track "$tmp/full_track.csv" --track-ids 0,7 --track-every 30 --quiet
 set +e
 
 # 1. kill -9 at 20 random moments (periodic checkpoints every 300 steps, so some kills land
@@ -17,7 +17,8 @@ kills=0 during_write=0
 RANDOM=12345
 for attempt in $(seq 1 100); do
   "$bin/run-stage" --scene "$scene" --stage long --in "$tmp/start.h5" --out "$tmp/killed.h5" --vtk "$tmp/vtk_killed" \
-    --wall-forces "$tmp/killed.csv" --wall-forces-every 50 --checkpoint-every 300 --restart --quiet 2> /dev/null &
+    --wall-forces "$tmp/killed.csv" --wall-forces-every 50 --track "$tmp/killed_track.csv" --track-ids 0,7 --track-every 30 \
+    --checkpoint-every 300 --restart --quiet 2> /dev/null &
   pid=$!
   if [ $kills -lt 20 ]; then
     sleep "0.$((RANDOM % 35 + 10))"
@@ -42,6 +43,8 @@ echo "survived $kills kill -9 ($during_write during a checkpoint write)"
 diff -r "$tmp/vtk_full" "$tmp/vtk_killed" > /dev/null || { echo "VTK frames differ after restarts"; exit 1; }
 # So is the per-wall force log (rows after a resumed checkpoint are dropped and written again).
 cmp "$tmp/full.csv" "$tmp/killed.csv" || { echo "wall force CSV differs after restarts"; exit 1; }
+cmp "$tmp/full_track.csv" "$tmp/killed_track.csv" || { echo "particle track CSV differs after restarts"; exit 1; }
+[ "$(wc -l < "$tmp/full_track.csv")" -gt 10 ] || { echo "particle track CSV too short"; exit 1; }
 
 # 2. A changed scene refuses to resume (exactness would be lost).
 "$bin/run-stage" --scene "$scene" --stage long --in "$tmp/start.h5" --out "$tmp/x.h5" --checkpoint-every 500 --quiet &

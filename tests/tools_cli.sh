@@ -45,6 +45,10 @@ for f in "$data"/fuzz/*.h5; do
   check "fuzz regression $(basename "$f")" 4 "damaged" -- "$bin/post-macro" --reference "$f" --in "$f"
 done
 check "unknown stage" 3 'no \[\[stage\]\] named "drill" (defined: shake, long)' -- "$bin/run-stage" --scene "$data/small.toml" --stage drill --in "$tmp/a.h5" --out "$tmp/b.h5"
+check "tracked id not in the model" 3 "no particle with id 99999" -- "$bin/run-stage" --scene "$data/small.toml" --stage shake --in "$tmp/a.h5" --out "$tmp/b.h5" --track "$tmp/t.csv" --track-ids 99999
+[ -e "$tmp/t.csv" ] || [ -e "$tmp/t.csv.partial" ] || [ -e "$tmp/b.h5" ] && { echo "FAIL output written after a bad --track-ids"; fail=1; }
+check "track ids without a file" 2 "requires --track" -- "$bin/run-stage" --scene "$data/small.toml" --stage shake --in "$tmp/a.h5" --out "$tmp/b.h5" --track-ids 3
+check "negative track id" 2 "track-ids" -- "$bin/run-stage" --scene "$data/small.toml" --stage shake --in "$tmp/a.h5" --out "$tmp/b.h5" --track "$tmp/t.csv" --track-ids -1
 sed 's/^frac = 0.1/frac = 0.1\ntime_step = 1.0e-3/' "$data/small.toml" > "$tmp/fast.toml"
 check "time step above critical" 3 "exceeds the critical time step" -- "$bin/run-stage" --scene "$tmp/fast.toml" --stage shake --in "$tmp/a.h5" --out "$tmp/b.h5"
 sed 's/^frac = 0.1/frac = 0.1\ntime_step = 4.2e-5\nforce_time_step = true/' "$data/small.toml" > "$tmp/forced.toml"

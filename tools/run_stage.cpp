@@ -18,6 +18,15 @@ int main(int argc, char** argv) {
   app.add_option("--wall-forces", o.wall_forces, "per-wall force and torque time series (CSV)");
   app.add_option("--wall-forces-every", o.wall_forces_every, "steps between rows of --wall-forces (default 100)")
       ->check(CLI::PositiveNumber);
+  auto* track = app.add_option("--track", o.track, "time series of chosen particles (CSV): position, velocity, spin");
+  auto* track_ids = app.add_option("--track-ids", o.track_ids, "ids of the particles for --track, e.g. 0,17")
+                        ->delimiter(',')
+                        ->check(CLI::NonNegativeNumber);
+  track->needs(track_ids);
+  track_ids->needs(track);
+  app.add_option("--track-every", o.track_every, "steps between rows of --track (default 100)")
+      ->check(CLI::PositiveNumber)
+      ->needs(track);
   app.add_flag("--quiet", o.quiet, "no progress output");
   dem::add_common_options(app, threads);
   return dem::run_tool(app, argc, argv, threads, [&] { dem::run_stage(o); });

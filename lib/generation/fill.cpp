@@ -16,12 +16,25 @@ void fill_random(Simulation& sim, const GenerationSpec& spec, std::mt19937_64& r
   auto key = [&](long i, long j, long k) { return (i * 73856093L) ^ (j * 19349663L) ^ (k * 83492791L); };
   Particles& p = sim.particles;
   const Index first_id = p.max_id() + 1;
+  // Given spheres first (ids in file order); they may be larger than radius_max, so the random ones
+  // are checked against them directly rather than through the grid.
+  const std::size_t first = p.size();
+  for (const PlacedSphere& s : spec.placed) {
+    p.add(first_id + static_cast<Index>(p.size() - first), s.centre, s.radius, sim.materials.materials()[s.material].density,
+          s.material);
+  }
+  auto clear_of_placed = [&](const Vec3& x, double a) {
+    for (std::size_t k = 0; k < spec.placed.size(); ++k)
+      if ((p.x[first + k] - x).norm() < a + p.radius[first + k]) return false;
+    return true;
+  };
+  const std::size_t total = first + spec.placed.size() + static_cast<std::size_t>(spec.count);
   const long max_attempts = 1000L * spec.count + 100000;
   long attempts = 0;
-  while (static_cast<int>(p.size()) < spec.count) {
+  while (p.size() < total) {
     if (++attempts > max_attempts) {
       std::ostringstream m;
-      m << "generation: placed only " << p.size() << " of " << spec.count << " spheres in the box after " << max_attempts
+      m << "generation: placed only " << p.size() - first - spec.placed.size() << " of " << spec.count << " random spheres in the box after " << max_attempts
         << " attempts; enlarge generation.box_min/box_max or lower generation.count (random placement reaches a solid "
            "fraction of about 0.3; settling compacts it)";
       throw InputError(m.str());
@@ -40,7 +53,7 @@ void fill_random(Simulation& sim, const GenerationSpec& spec, std::mt19937_64& r
     }
     const long ci = static_cast<long>(std::floor(x[0] / cell)), cj = static_cast<long>(std::floor(x[1] / cell)),
                ck = static_cast<long>(std::floor(x[2] / cell));
-    bool free = true;
+    bool free = clear_of_placed(x, a);
     for (long di = -1; di <= 1 && free; ++di)
       for (long dj = -1; dj <= 1 && free; ++dj)
         for (long dk = -1; dk <= 1 && free; ++dk) {
@@ -56,7 +69,7 @@ void fill_random(Simulation& sim, const GenerationSpec& spec, std::mt19937_64& r
         }
     if (!free) continue;
     grid[key(ci, cj, ck)].push_back(static_cast<int>(p.size()));
-    p.add(first_id + static_cast<Index>(p.size()), x, a, sim.materials.materials()[mat].density, mat);
+    p.add(first_id + static_cast<Index>(p.size() - first), x, a, sim.materials.materials()[mat].density, mat);
   }
 }
 

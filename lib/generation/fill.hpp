@@ -7,7 +7,7 @@
 
 namespace dem {
 
-// Places spec.count non-overlapping spheres at pseudo-random positions inside spec's box (random
+// Adds spec.placed (ids first, in order), then places spec.count non-overlapping spheres at pseudo-random positions inside spec's box (random
 // sequential addition). Radius uniform in [radius_min, radius_max], materials drawn by fraction.
 // Throws InputError if the box cannot hold them. Same seed, same particles.
 void fill_random(Simulation& sim, const GenerationSpec& spec, std::mt19937_64& rng);

@@ -561,6 +561,30 @@ void read_walls(TableReader& top, Scene& sc) {
   }
 }
 
+// [[generation.place]]: spheres at given positions (e.g. the large intruder of the segregation
+// case), inside the generation box and not overlapping each other.
+std::vector<PlacedSphere> read_placed(TableReader& gen, const Scene& sc, const GenerationSpec& g) {
+  std::vector<PlacedSphere> out;
+  const auto list = gen.tables("place");
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    TableReader r(*list[k], gen.file(), gen.name(indexed("place", k)));
+    PlacedSphere s;
+    s.centre = r.vec3("centre");
+    s.radius = r.number("radius", 0, kInf, "m", true);
+    const std::string mat = r.string("material");
+    s.material = find_material(sc.materials, mat);
+    if (s.material < 0) r.fail("material", "no material of that name");
+    if (!((s.centre.array() - s.radius >= g.box_min.array()).all() && (s.centre.array() + s.radius <= g.box_max.array()).all()))
+      r.fail("centre", "the sphere (centre +- radius) must lie inside the generation box [box_min, box_max]");
+    for (std::size_t j = 0; j < out.size(); ++j)
+      if ((out[j].centre - s.centre).norm() < out[j].radius + s.radius)
+        r.fail("centre", "overlaps generation.place[" + std::to_string(j) + "]");
+    r.finish();
+    out.push_back(s);
+  }
+  return out;
+}
+
 void read_generation(TableReader& top, Scene& sc) {
   const toml::table* t = top.subtable("generation");
   if (!t) return;
@@ -590,6 +614,7 @@ void read_generation(TableReader& top, Scene& sc) {
     g.material_fractions.emplace_back(idx, f);
   }
   if (std::abs(sum - 1) > 1e-9) r.fail_at(&mn, "materials", "the fractions must sum to 1 (they sum to " + std::to_string(sum) + ")");
+  g.placed = read_placed(r, sc, g);
   g.settle = read_settle(r, "settle");
   r.finish();
   sc.generation = g;

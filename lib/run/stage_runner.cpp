@@ -11,6 +11,7 @@
 #include "io/scene_parser.hpp"
 #include "io/vtk_output.hpp"
 #include "run/frames.hpp"
+#include "run/particle_track.hpp"
 #include "run/progress.hpp"
 #include "run/setup.hpp"
 #include "run/wall_log.hpp"
@@ -114,7 +115,10 @@ void run_stage(const StageOptions& o) {
   const std::vector<ServoGroup> servos = stage_servos(sim, scene, *stage);
   double k_max = 0, c_max = 0;
   servo_constants(sim, k_max, c_max);
-  WallLog wall_log(o.wall_forces, sim.walls, o.wall_forces_every, sim.step > run.stage_start_step ? sim.step : -1);
+  const std::int64_t resume_step = sim.step > run.stage_start_step ? sim.step : -1;
+  WallLog wall_log(o.wall_forces, sim.walls, o.wall_forces_every, resume_step);
+  ParticleTrack track(o.track, o.track_ids, sim, o.track_every, resume_step);
+  if (resume_step < 0) track.record(sim, 0, true);  // the state at the stage start
 
   FrameWriter frames(o.vtk_dir, stage->name);
   const std::int64_t interval =
@@ -141,6 +145,7 @@ void run_stage(const StageOptions& o) {
     maybe_frame();
     const std::int64_t done = sim.step - run.stage_start_step;
     wall_log.record(sim, done, sim.step == end);
+    track.record(sim, done, sim.step == end);
     progress.update(done, sim.time);
     if (o.checkpoint_every > 0 && done % o.checkpoint_every == 0 && sim.step < end) write_checkpoint(restart_file, sim, meta);
   }
@@ -156,6 +161,7 @@ void run_stage(const StageOptions& o) {
     }
   }
   wall_log.finish();  // before the checkpoint: a finished checkpoint means finished outputs (make)
+  track.finish();
   write_checkpoint(o.out, sim, meta);
   std::remove(restart_file.c_str());
 }

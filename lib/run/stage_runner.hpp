@@ -3,6 +3,7 @@
 // exact resumption (--restart) and VTK frames.
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace dem {
 
@@ -16,6 +17,9 @@ struct StageOptions {
   bool restart = false;              // resume from the periodic checkpoint if there is one
   std::string wall_forces;           // per-wall force and torque CSV; empty = none
   std::int64_t wall_forces_every = 100;  // steps between its rows
+  std::string track;                 // tracked particles CSV; empty = none
+  std::vector<std::int64_t> track_ids;   // their ids
+  std::int64_t track_every = 100;        // steps between its rows
   bool quiet = false;
 };
 

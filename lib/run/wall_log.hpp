@@ -1,14 +1,12 @@
 #pragma once
 // Per-wall force and torque time series (SPEC §3), written as CSV while a stage runs. A mesh wall
 // is the sum over its elements (`drum.0`, `drum.1`, ... give one row `drum`); box faces
-// (`box.zmax`) and polygons are walls of their own. Rows go to FILE.partial as they come and the file is renamed to FILE when the
-// stage completes; a resumed run (--restart) keeps the rows up to its checkpoint's step, so the
-// finished file equals an uninterrupted run's.
+// (`box.zmax`) and polygons are walls of their own. Partial file and restart: io/csv_series.hpp.
 #include <cstdint>
-#include <cstdio>
 #include <string>
 #include <vector>
 
+#include "io/csv_series.hpp"
 #include "sim/simulation.hpp"
 
 namespace dem {
@@ -18,17 +16,13 @@ class WallLog {
   // `path` empty: no log. `resume_step` >= 0: continue the partial file of an interrupted run,
   // dropping its rows after that step.
   WallLog(const std::string& path, const std::vector<Wall>& walls, std::int64_t every, std::int64_t resume_step);
-  ~WallLog();
-  WallLog(const WallLog&) = delete;
-  WallLog& operator=(const WallLog&) = delete;
 
   // Appends one row per wall if `steps_done` is a multiple of `every` or `last`.
   void record(const Simulation& sim, std::int64_t steps_done, bool last);
-  void finish();  // closes the file and renames it into place
+  void finish() { csv_.finish(); }  // closes the file and renames it into place
 
  private:
-  std::string path_, partial_;
-  std::FILE* file_ = nullptr;
+  CsvSeries csv_;
   std::int64_t every_ = 1;
   std::vector<std::string> names_;  // wall names (scene entries)
   std::vector<int> group_of_;       // element -> index into names_

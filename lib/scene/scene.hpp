@@ -37,9 +37,17 @@ struct SettleSpec {
   double check_every = 0.01;  // [s]
 };
 
+// One sphere placed at a given position before the random ones ([[generation.place]]).
+struct PlacedSphere {
+  Vec3 centre = Vec3::Zero();  // [m]
+  double radius = 0;           // [m]
+  int material = 0;
+};
+
 struct GenerationSpec {
   Vec3 box_min, box_max;  // region to fill [m]
-  int count = 0;
+  int count = 0;          // random spheres, placed after `placed`
+  std::vector<PlacedSphere> placed;  // ids 0..placed.size()-1, in file order
   double radius_min = 0, radius_max = 0;  // [m], uniform in [min, max]
   std::vector<std::pair<int, double>> material_fractions;  // material index, fraction (sum 1)
   std::uint64_t seed = 1;
