@@ -227,7 +227,7 @@ SettleSpec read_settle(TableReader& parent, const std::string& key) {
   if (!t) return s;
   TableReader r(*t, parent.file(), parent.name(key));
   s.ke_ratio = r.number_or("ke_ratio", s.ke_ratio, 0, kInf, "(dimensionless)", true);
-  s.max_time = r.number_or("max_time", s.max_time, 0, kInf, "s", true);
+  s.max_time = r.number_or("max_time", s.max_time, 0, kInf, "s");  // 0: no settling
   s.check_every = r.number_or("check_every", s.check_every, 0, kInf, "s", true);
   r.finish();
   return s;
@@ -593,7 +593,7 @@ void read_generation(TableReader& top, Scene& sc) {
   g.box_min = r.vec3("box_min");
   g.box_max = r.vec3("box_max");
   if (!((g.box_max - g.box_min).array() > 0).all()) r.fail("box_max", "every component of box_max must exceed box_min");
-  g.count = static_cast<int>(r.integer("count", 1, 100000000));
+  g.count = static_cast<int>(r.integer("count", 0, 100000000));
   g.radius_min = r.number("radius_min", 0, kInf, "m", true);
   g.radius_max = r.number("radius_max", 0, kInf, "m", true);
   if (g.radius_min > g.radius_max) r.fail("radius_max", "radius_max must be >= radius_min (" + std::to_string(g.radius_min) + " m)");
@@ -615,6 +615,7 @@ void read_generation(TableReader& top, Scene& sc) {
   }
   if (std::abs(sum - 1) > 1e-9) r.fail_at(&mn, "materials", "the fractions must sum to 1 (they sum to " + std::to_string(sum) + ")");
   g.placed = read_placed(r, sc, g);
+  if (g.count == 0 && g.placed.empty()) r.fail("count", "no spheres: give count >= 1 or [[generation.place]] entries");
   g.settle = read_settle(r, "settle");
   r.finish();
   sc.generation = g;

@@ -47,7 +47,7 @@ double porosity(const Simulation& sim) {
 void report(const char* tool, const Simulation& sim, const SettleResult& s, double wall_seconds) {
   std::printf("%s: %zu particles, %lld steps of dt = %.4g s (t = %.4g s), settled: %s (KE ratio %.3g), porosity %.4f, "
               "coordination %.3f, %.2f s wall\n",
-              tool, sim.particles.size(), static_cast<long long>(s.steps), sim.dt, sim.time, s.converged ? "yes" : "no (time cap)",
+              tool, sim.particles.size(), static_cast<long long>(s.steps), sim.dt, sim.time, s.skipped ? "skipped (max_time = 0)" : s.converged ? "yes" : "no (time cap)",
               s.ke_ratio, porosity(sim), coordination_number(sim), wall_seconds);
 }
 

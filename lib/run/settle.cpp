@@ -9,6 +9,10 @@ namespace dem {
 
 SettleResult settle(Simulation& sim, const SettleSpec& spec, const std::string& label, bool quiet) {
   SettleResult r;
+  if (spec.max_time == 0) {  // the scene asks for no settling (e.g. a sphere placed to start at rest)
+    r.skipped = true;
+    return r;
+  }
   if (!(sim.params.gravity.norm() > 0)) throw InputError("settling needs gravity: simulation.gravity is zero");
   if (sim.particles.size() == 0) return r;
   const std::int64_t max_steps = static_cast<std::int64_t>(std::ceil(spec.max_time / sim.dt));
