@@ -1,0 +1,172 @@
+#!/usr/bin/env python3
+"""Brazil-nut segregation (thesis §4.5): how far and how fast the large sphere rises, and the
+convection of the small ones, from the checkpoints and run-stage's --track CSV.
+
+Reads the checkpoint at the start of vibration, one after a first span (the thesis's 4.7 s) and
+optionally one at the end, plus the intruder's track(s). Writes a summary table (key,value,unit),
+the convection profile (mean vertical displacement of the small spheres against their distance
+from the nearest side wall) and a two-panel PNG. Heights are absolute: the floor itself moves by
+the vibration amplitude (1.9 mm at 20 Hz, 3 g).
+"""
+import argparse
+import csv
+import os
+
+import h5py
+import numpy as np
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+from post_table import save_atomically  # noqa: E402
+
+
+def load(path):
+    with h5py.File(path, "r") as f:
+        order = np.argsort(f["particles/id"][()])
+        walls = f["walls/base_vertices"][()].reshape(-1, 3)
+        return {
+            "id": f["particles/id"][()][order],
+            "x": f["particles/position"][()][order],
+            "r": f["particles/radius"][()][order],
+            "t": float(f["state/time"][()]),
+            "walls": walls,
+        }
+
+
+def surface_height(s, skip, columns=5):
+    """Mean over a columns x columns grid of the highest sphere top (z + r) in each column:
+    the bed's free surface, leaving out the particles in `skip` (the intruder)."""
+    lo = s["walls"][:, :2].min(axis=0)
+    hi = s["walls"][:, :2].max(axis=0)
+    keep = ~np.isin(s["id"], skip)
+    x, top = s["x"][keep], s["x"][keep, 2] + s["r"][keep]
+    cell = np.minimum(((x[:, :2] - lo) / (hi - lo) * columns).astype(int), columns - 1)
+    tops = [top[(cell[:, 0] == i) & (cell[:, 1] == j)].max() for i in range(columns) for j in range(columns)]
+    return float(np.mean(tops)), float(np.max(top))
+
+
+def read_tracks(paths, intruder):
+    rows = []
+    for p in paths:
+        with open(p) as f:
+            for r in csv.DictReader(f):
+                if int(r["id"]) == intruder:
+                    rows.append((float(r["time_s"]), float(r["z_m"]), float(r["vz_m_s"])))
+    rows.sort()
+    t, z, _ = (np.array(c) for c in zip(*rows))
+    keep = np.concatenate(([True], np.diff(t) > 0))  # a stage's first row repeats the last one before
+    return t[keep], z[keep]
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--start", required=True, help="checkpoint at the start of vibration")
+    ap.add_argument("--span", required=True, help="checkpoint after the first span (convection is measured over it)")
+    ap.add_argument("--end", help="checkpoint at the end of the run (default: --span)")
+    ap.add_argument("--track", required=True, nargs="+", help="run-stage --track CSV file(s) of the intruder")
+    ap.add_argument("--intruder", type=int, default=0, help="particle id of the large sphere")
+    ap.add_argument("--frequency", type=float, required=True, help="vibration frequency [Hz]")
+    ap.add_argument("--summary", required=True, help="summary CSV (key,value,unit)")
+    ap.add_argument("--convection", required=True, help="convection profile CSV")
+    ap.add_argument("--png", required=True)
+    a = ap.parse_args()
+
+    start, span = load(a.start), load(a.span)
+    end = load(a.end) if a.end else span
+    k0 = np.searchsorted(start["id"], a.intruder)
+    big_r = start["r"][k0]
+    small_d = 2 * np.median(start["r"])
+    t, z = read_tracks(a.track, a.intruder)
+    t0 = start["t"]
+    cycles = (t - t0) * a.frequency
+
+    # Rise: the intruder's top against the bed's free surface (measured at rest at the start, and
+    # at the end). Per-cycle means remove the vibration's own up-and-down.
+    h_start, _ = surface_height(start, [a.intruder])
+    h_end, top_end = surface_height(end, [a.intruder])
+    # The samples do not divide a cycle evenly: average over 64 equally spaced phases instead.
+    cyc = np.arange(int(np.floor(cycles[-1])))
+    phases = (np.arange(64) + 0.5) / 64
+    zc = np.array([np.interp(c + phases, cycles, z).mean() for c in cyc])
+    arrived = np.nonzero(zc + big_r >= h_end - small_d)[0]
+    arrival = float(cyc[arrived[0]] + 0.5) if arrived.size else float("nan")
+
+    # Convection over the first span: mean vertical displacement of the small spheres against the
+    # distance of their starting position from the nearest side wall.
+    lo = start["walls"][:, :2].min(axis=0)
+    hi = start["walls"][:, :2].max(axis=0)
+    small = start["id"] != a.intruder
+    assert np.array_equal(start["id"], span["id"]), "the particles must be the same in both checkpoints"
+    dz = span["x"][small, 2] - start["x"][small, 2]
+    xy = start["x"][small, :2]
+    wall_dist = np.minimum((xy - lo).min(axis=1), (hi - xy).min(axis=1))
+    edges = np.arange(0, wall_dist.max() + small_d / 2, small_d / 2)
+    profile = []
+    for e0, e1 in zip(edges[:-1], edges[1:]):
+        m = (wall_dist >= e0) & (wall_dist < e1)
+        if m.sum() >= 5:
+            profile.append((0.5 * (e0 + e1), m.sum(), dz[m].mean(), np.median(dz[m]), (dz[m] < 0).mean()))
+    band = wall_dist < small_d
+    core = wall_dist > 3 * small_d
+    span_cycles = (span["t"] - t0) * a.frequency
+    big_span = span["x"][k0, 2] - start["x"][k0, 2]
+    core_rate = dz[core].mean() / span_cycles
+
+    rows = [
+        ("vibration_cycles", (end["t"] - t0) * a.frequency, "cycles"),
+        ("surface_height_start", h_start, "m"),
+        ("surface_height_end", h_end, "m"),
+        ("highest_sphere_top_end", top_end, "m"),
+        ("intruder_radius", big_r, "m"),
+        ("intruder_centre_start", z[0], "m"),
+        ("intruder_centre_end", zc[-1], "m"),
+        ("intruder_reaches_surface_after", arrival, "cycles"),
+        ("span_cycles", span_cycles, "cycles"),
+        ("intruder_rise_in_span", big_span, "m"),
+        ("wall_band_mean_dz_in_span", dz[band].mean(), "m"),
+        ("wall_band_fraction_moving_down", (dz[band] < 0).mean(), "-"),
+        ("core_mean_dz_in_span", dz[core].mean(), "m"),
+        ("core_fraction_moving_up", (dz[core] > 0).mean(), "-"),
+        ("core_rise_rate", core_rate, "m/cycle"),
+        ("intruder_rise_rate_in_span", big_span / span_cycles, "m/cycle"),
+    ]
+    for path, header, data in (
+        (a.summary, ["key", "value", "unit"], rows),
+        (a.convection, ["wall_distance_m", "count", "mean_dz_m", "median_dz_m", "fraction_down"], profile),
+    ):
+        with open(path + ".tmp", "w", newline="") as f:
+            w = csv.writer(f)
+            w.writerow(header)
+            w.writerows(data)
+        os.replace(path + ".tmp", path)
+    for k, v, u in rows:
+        print(f"segregation: {k} = {v:.6g} {u}")
+
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(10, 4.2), dpi=120)
+    ax1.plot(cycles, z * 1e3, lw=0.4, color="0.6", label="intruder centre")
+    ax1.plot(cyc + 0.5, zc * 1e3, lw=1.6, color="C0", label="per-cycle mean")
+    ax1.axhline((h_end - big_r) * 1e3, color="C3", ls="--", lw=1, label="centre at the surface (end)")
+    ax1.axhline((h_start - big_r) * 1e3, color="C3", ls=":", lw=1, label="centre at the surface (start)")
+    ax1.axvline(span_cycles, color="0.3", lw=0.8, ls="-.", label="thesis span (4.7 s)")
+    if arrived.size:
+        ax1.axvline(arrival, color="C2", lw=1, label=f"reaches the surface: {arrival:.0f} cycles")
+    ax1.set_xlabel(f"cycles at {a.frequency:g} Hz")
+    ax1.set_ylabel("height [mm]")
+    ax1.set_title("Large sphere (24 mm) in 8 mm spheres, 3 g", fontsize=9)
+    ax1.legend(fontsize=7, loc="lower right")
+    p = np.array(profile)
+    ax2.plot(p[:, 0] / small_d, p[:, 2] * 1e3, marker="o", label="mean")
+    ax2.plot(p[:, 0] / small_d, p[:, 3] * 1e3, marker="s", ls="--", label="median")
+    ax2.axhline(0, color="grey", lw=0.8)
+    ax2.set_xlabel("distance from the nearest side wall [small diameters]")
+    ax2.set_ylabel(f"vertical displacement in {span_cycles:.0f} cycles [mm]")
+    ax2.set_title("Convection: down along the walls, up in the centre", fontsize=9)
+    ax2.legend(fontsize=7)
+    save_atomically(fig, a.png)
+    plt.close(fig)
+
+
+if __name__ == "__main__":
+    main()
