@@ -61,11 +61,23 @@ Simulation load_under_scene(const std::string& path, const Scene& scene, WallPos
   return sim;
 }
 
-// The common end of gen-primary and copy-settle: time step, settle, checkpoint, report.
+// [[generation.cut]]: each region in turn removes the particles inside (or outside) it.
+void apply_cuts(const char* tool, Simulation& sim, const std::vector<CutSpec>& cuts, const Scene& scene) {
+  for (std::size_t k = 0; k < cuts.size(); ++k) {
+    const std::size_t removed = remove_particles(sim, cuts[k].region, cuts[k].inside);
+    std::printf("%s: generation.cut[%zu] removed %zu particles, %zu remain\n", tool, k, removed, sim.particles.size());
+    if (sim.particles.size() == 0)
+      throw InputError(scene.path + ": generation.cut[" + std::to_string(k) + "] removed every particle");
+  }
+}
+
+// The common end of gen-primary and copy-settle: time step, settle, cuts (gen-primary), checkpoint,
+// report.
 void settle_and_write(const char* tool, Simulation& sim, const SettleSpec& spec, const Scene& scene, const GenerateOptions& o,
-                      Clock::time_point t0) {
+                      Clock::time_point t0, const std::vector<CutSpec>& cuts = {}) {
   sim.dt = choose_time_step(sim, scene.simulation);
   const SettleResult s = settle(sim, spec, std::string(tool) + " settle", o.quiet);
+  apply_cuts(tool, sim, cuts, scene);
   write_checkpoint(o.out, sim, meta_for(tool, scene));
   report(tool, sim, s, seconds_since(t0));
 }
@@ -79,7 +91,7 @@ void gen_primary(const GenerateOptions& o) {
   Simulation sim = simulation_from_scene(scene);
   std::mt19937_64 rng(scene.generation->seed);
   fill_random(sim, *scene.generation, rng);
-  settle_and_write("gen-primary", sim, scene.generation->settle, scene, o, t0);
+  settle_and_write("gen-primary", sim, scene.generation->settle, scene, o, t0, scene.generation->cuts);
 }
 
 void copy_settle(const GenerateOptions& o) {

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "generation/fill.hpp"
 #include "io/checkpoint.hpp"
 #include "io/scene_parser.hpp"
 #include "io/vtk_output.hpp"
@@ -37,13 +38,7 @@ void apply_actions(Simulation& sim, const StageSpec& stage) {
       const std::size_t n = sim.bond_present_contacts(a.walls);
       std::cerr << "stage " << stage.name << ": bonded " << n << " contacts\n";
     } else {
-      std::vector<bool> keep(p.size());
-      std::size_t removed = 0;
-      for (std::size_t k = 0; k < p.size(); ++k) {
-        keep[k] = a.region.contains(p.x[k]) != a.inside;
-        removed += !keep[k];
-      }
-      p.keep_only(keep);
+      const std::size_t removed = remove_particles(sim, a.region, a.inside);
       std::cerr << "stage " << stage.name << ": removed " << removed << " particles, " << p.size() << " remain\n";
     }
   }
