@@ -150,7 +150,7 @@ Polygon ConvexPolytope::face_in(const HalfSpace& h) const {
 }
 
 Container::Container(const std::vector<Wall>& walls, double t, const Particles& p, const Vec3& gravity)
-    : walls_(walls), t_(t), particles_(p), bounds_(walls.size(), -1) {
+    : walls_(walls), t_(t), particles_(p), bounds_(walls.size(), -1), planes_(walls.size()), have_plane_(walls.size(), 0) {
   for (const Vec3& x : p.x) centroid_ += x;
   if (p.size() > 0) centroid_ /= static_cast<double>(p.size());
   if (gravity.norm() > 0 && p.size() > 0) {
@@ -165,14 +165,20 @@ Container::Container(const std::vector<Wall>& walls, double t, const Particles& 
 
 Polygon Container::vertices(std::size_t k) const { return walls_[k].vertices_at(t_); }
 
-HalfSpace Container::plane(const Polygon& v) const {
-  Vec3 n = newell_normal(v, v.size()).normalized();
-  if (n.dot(centroid_ - v[0]) < 0) n = -n;  // facing the particles
-  return HalfSpace::through(v[0], n);
+const HalfSpace& Container::plane(std::size_t k) {
+  if (!have_plane_[k]) {
+    const Polygon v = vertices(k);
+    Vec3 n = newell_normal(v, v.size()).normalized();
+    if (n.dot(centroid_ - v[0]) < 0) n = -n;  // facing the particles
+    planes_[k] = HalfSpace::through(v[0], n);
+    have_plane_[k] = 1;
+  }
+  return planes_[k];
 }
 
-bool Container::bounds(std::size_t k, const HalfSpace& h) {
+bool Container::bounds(std::size_t k) {
   if (bounds_[k] < 0) {
+    const HalfSpace& h = plane(k);
     bounds_[k] = 1;
     for (const Vec3& x : particles_.x)
       if (h.distance(x) < 0) {
@@ -195,10 +201,8 @@ double Container::volume() {
     hi = hi.cwiseMax(particles_.x[i] + Vec3::Constant(particles_.radius[i]));
   }
   ConvexPolytope shape(lo, hi);
-  for (std::size_t k = 0; k < walls_.size(); ++k) {
-    const HalfSpace h = plane(vertices(k));
-    if (bounds(k, h)) shape.clip(h);
-  }
+  for (std::size_t k = 0; k < walls_.size(); ++k)
+    if (bounds(k)) shape.clip(plane(k));
   if (has_top_) shape.clip(top_);
   return shape.volume();
 }
@@ -211,12 +215,12 @@ double Container::wall_area(std::size_t k) {
   Polygon inside = own;
   for (std::size_t j = 0; j < walls_.size() && inside.size() >= 3; ++j) {
     if (j == k) continue;
-    const HalfSpace h = plane(vertices(j));
+    const HalfSpace& h = plane(j);
     // Only a plane that cuts the polygon matters; whether it bounds the particles costs a pass over
     // them, so ask only then.
     bool cuts = false;
     for (const Vec3& v : inside) cuts = cuts || h.distance(v) < -tol;
-    if (cuts && bounds(j, h)) inside = clip_polygon(inside, h, tol);
+    if (cuts && bounds(j)) inside = clip_polygon(inside, h, tol);
   }
   if (inside.size() < 3) return polygon_area(own);  // beyond the other walls: its own area
   if (has_top_) {

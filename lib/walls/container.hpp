@@ -93,10 +93,12 @@ class Container {
   bool has_top_ = false;  // under gravity, with particles
   HalfSpace top_;         // below the top of the highest sphere
   std::vector<signed char> bounds_;  // per wall: -1 not yet known, 0 no, 1 yes
+  std::vector<HalfSpace> planes_;    // per wall, once asked for (a servo group asks for every wall
+  std::vector<char> have_plane_;     // per element of the group)
 
   Polygon vertices(std::size_t k) const;
-  HalfSpace plane(const Polygon& v) const;  // the polygon's plane, normal towards the centroid
-  bool bounds(std::size_t k, const HalfSpace& h);
+  const HalfSpace& plane(std::size_t k);  // wall k's plane, normal towards the centroid
+  bool bounds(std::size_t k);
 };
 
 }  // namespace dem
