@@ -88,6 +88,9 @@ TEST_P(SceneRejects, WithAClearMessage) {
   }
 }
 
+// A stage action removing `region` (an inline table), for the region cases below.
+std::string remove_region(const std::string& region) { return "\n[[stage.action]]\ntype = \"remove\"\nregion = " + region + "\n"; }
+
 std::vector<BadCase> bad_cases() {
   return {
       {"syntax error", replace(kValid, "density = 2500.0", "density = = 2500.0"), {"scene.toml:6", "TOML syntax error"}},
@@ -193,6 +196,40 @@ std::vector<BadCase> bad_cases() {
        {"stage[0].servo[0].gain = 2", "(0, 1]"}},
       {"servo of an unknown wall", kValid + "\n[[stage.servo]]\nwall = \"lid\"\ntarget_stress = 1000.0\nmax_speed = 0.1\n",
        {"stage[0].servo[0].wall = \"lid\"", "no wall or wall group"}},
+      // Cutting regions (stage action remove, [[generation.cut]]).
+      {"unknown region type", kValid + remove_region("{ type = \"cone\", centre = [0, 0, 0] }"),
+       {"stage[0].action[0].region.type = \"cone\"", "allowed \"box\", \"sphere\", \"cylinder\", \"half_space\", \"mesh\""}},
+      {"cylinder of negative radius", kValid + remove_region("{ type = \"cylinder\", centre = [0, 0, 0], radius = -0.1 }"),
+       {"stage[0].action[0].region.radius = -0.1", "out of range: allowed (0, inf) m"}},
+      {"cylinder of zero length", kValid + remove_region("{ type = \"cylinder\", centre = [0, 0, 0], radius = 0.1, length = 0 }"),
+       {"stage[0].action[0].region.length = 0", "allowed (0, inf) m (omit for an infinite cylinder)"}},
+      {"cylinder about a zero axis", kValid + remove_region("{ type = \"cylinder\", centre = [0, 0, 0], radius = 0.1, axis = [0, 0, 0] }"),
+       {"stage[0].action[0].region.axis", "non-zero"}},
+      {"cylinder without centre", kValid + remove_region("{ type = \"cylinder\", radius = 0.1 }"),
+       {"stage[0].action[0].region.centre is missing"}},
+      {"cylinder with a box key", kValid + remove_region("{ type = \"cylinder\", centre = [0, 0, 0], radius = 0.1, height = 1 }"),
+       {"stage[0].action[0].region.height = 1", "unknown key", "allowed here: axis, centre, length, radius, type"}},
+      {"half-space of zero normal", kValid + remove_region("{ type = \"half_space\", point = [0, 0, 0], normal = [0, 0, 0] }"),
+       {"stage[0].action[0].region.normal", "non-zero"}},
+      {"half-space without point", kValid + remove_region("{ type = \"half_space\", normal = [0, 0, 1] }"),
+       {"stage[0].action[0].region.point is missing"}},
+      {"mesh region, missing file", kValid + remove_region("{ type = \"mesh\", file = \"no_such.stl\" }"),
+       {"stage[0].action[0].region.file = \"no_such.stl\"", "cannot open the STL file"}},
+      {"mesh region, open surface", kValid + remove_region("{ type = \"mesh\", file = \"" DEM_TEST_DATA "/baffle.stl\" }"),
+       {"stage[0].action[0].region.file", "the mesh is not closed: 4 edges belong to one triangle only"}},
+      {"mesh region, inconsistent orientation",
+       kValid + remove_region("{ type = \"mesh\", file = \"" DEM_TEST_DATA "/cube_flipped.stl\", scale = 0.001 }"),
+       {"stage[0].action[0].region.file", "not consistently oriented", "between (0, 0, 0) and (0, 0, 0.01)"}},
+      {"mesh region, zero scale", kValid + remove_region("{ type = \"mesh\", file = \"" DEM_TEST_DATA "/cube.stl\", scale = 0 }"),
+       {"stage[0].action[0].region.scale = 0", "(0, inf)"}},
+      {"cut without region", replace(kValid, "[[stage]]", "[[generation.cut]]\ninside = false\n\n[[stage]]"),
+       {"generation.cut[0].region is missing"}},
+      {"cut with inside = 1", replace(kValid, "[[stage]]", "[[generation.cut]]\nregion = { type = \"sphere\", centre = [0, 0, 0], radius = 0.01 }\ninside = 1\n\n[[stage]]"),
+       {"generation.cut[0].inside = 1", "expected true or false"}},
+      {"cut with an unknown key", replace(kValid, "[[stage]]", "[[generation.cut]]\nregion = { type = \"sphere\", centre = [0, 0, 0], radius = 0.01 }\noutside = true\n\n[[stage]]"),
+       {"generation.cut[0].outside = true", "unknown key", "allowed here: inside, region"}},
+      {"cut with a bad region", replace(kValid, "[[stage]]", "[[generation.cut]]\nregion = { type = \"half_space\", point = [0, 0, 0], normal = [0, 0] }\n\n[[stage]]"),
+       {"generation.cut[0].region.normal", "array of 3 numbers"}},
   };
 }
 

@@ -1,6 +1,7 @@
 #include "generation/fill.hpp"
 
 #include <cmath>
+#include <set>
 #include <sstream>
 #include <unordered_map>
 
@@ -94,6 +95,34 @@ void tile(Simulation& sim, int nx, int ny, int nz, const Vec3& period) {
         }
       }
   sim.set_contacts({}, {});
+}
+
+std::size_t remove_particles(Simulation& sim, const Region& region, bool inside) {
+  Particles& p = sim.particles;
+  // The tests are independent (a mesh region's cost a particle each): in parallel, one byte each.
+  std::vector<char> in(p.size());
+  const long n = static_cast<long>(p.size());
+#pragma omp parallel for schedule(dynamic, 256)
+  for (long k = 0; k < n; ++k) in[k] = region.contains(p.x[k]);
+  std::vector<bool> keep(p.size());
+  std::set<Index> gone;
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    keep[k] = (in[k] != 0) != inside;
+    if (!keep[k]) gone.insert(p.id[k]);
+  }
+  if (gone.empty()) return 0;
+  p.keep_only(keep);
+  // The contacts of the removed particles go too, so that a checkpoint written now names only
+  // particles it holds (a run would drop them at its next neighbour search anyway).
+  ContactList pairs, walls;
+  const ContactList& pc = sim.pair_contacts();
+  for (std::size_t k = 0; k < pc.size(); ++k)
+    if (!gone.count(pc.key_i[k]) && !gone.count(pc.key_j[k])) pairs.push_back_from(pc, k);
+  const ContactList& wc = sim.wall_contacts();
+  for (std::size_t k = 0; k < wc.size(); ++k)
+    if (!gone.count(wc.key_i[k])) walls.push_back_from(wc, k);
+  sim.set_contacts(std::move(pairs), std::move(walls));
+  return gone.size();
 }
 
 std::pair<Vec3, Vec3> sphere_bounds(const Particles& p) {

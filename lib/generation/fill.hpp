@@ -16,6 +16,10 @@ void fill_random(Simulation& sim, const GenerationSpec& spec, std::mt19937_64& r
 // tile order; velocities are kept, contact history is dropped (the copies settle again).
 void tile(Simulation& sim, int nx, int ny, int nz, const Vec3& period);
 
+// Removes the particles whose centre is inside `region` (outside it when !inside), and their
+// contacts (SPEC §9 step 4: other shapes come from a box by cutting). Returns how many it removed.
+std::size_t remove_particles(Simulation& sim, const Region& region, bool inside);
+
 // Bounding box of the spheres (centres +- radii): min, max.
 std::pair<Vec3, Vec3> sphere_bounds(const Particles& p);
 

@@ -1,11 +1,13 @@
 #include "io/scene_parser.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <map>
+#include <memory>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -585,6 +587,23 @@ std::vector<PlacedSphere> read_placed(TableReader& gen, const Scene& sc, const G
   return out;
 }
 
+Region read_region(TableReader& parent, const std::string& key);
+
+// [[generation.cut]]: regions cut out of the settled primary set, in file order (SPEC §9 step 4).
+std::vector<CutSpec> read_cuts(TableReader& gen) {
+  std::vector<CutSpec> out;
+  const auto list = gen.tables("cut");
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    TableReader r(*list[k], gen.file(), gen.name(indexed("cut", k)));
+    CutSpec c;
+    c.region = read_region(r, "region");
+    c.inside = r.boolean_or("inside", true);
+    r.finish();
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
 void read_generation(TableReader& top, Scene& sc) {
   const toml::table* t = top.subtable("generation");
   if (!t) return;
@@ -617,6 +636,7 @@ void read_generation(TableReader& top, Scene& sc) {
   g.placed = read_placed(r, sc, g);
   if (g.count == 0 && g.placed.empty()) r.fail("count", "no spheres: give count >= 1 or [[generation.place]] entries");
   g.settle = read_settle(r, "settle");
+  g.cuts = read_cuts(r);
   r.finish();
   sc.generation = g;
 }
@@ -663,21 +683,58 @@ void read_compact(TableReader& top, Scene& sc) {
   sc.compact = c;
 }
 
+// region = { type = "cylinder", ... }: a point on the axis, the axis (default +z), the radius, and
+// optionally the length (centred on `centre`; infinite when not given, e.g. a borehole through
+// the whole sample).
+void read_cylinder_region(TableReader& r, Region& g) {
+  g.kind = Region::Kind::Cylinder;
+  g.centre = r.vec3("centre");
+  g.axis = direction_or(r, "axis", Vec3::UnitZ()).normalized();
+  g.radius = r.number("radius", 0, kInf, "m", true);
+  g.length = r.number_or("length", 0.0, 0, kInf, "m (omit for an infinite cylinder)", true);
+}
+
+// region = { type = "half_space", point = [...], normal = [...] }: the side the normal points into.
+void read_half_space_region(TableReader& r, Region& g) {
+  g.kind = Region::Kind::HalfSpace;
+  g.point = r.vec3("point");
+  g.normal = unit_direction(r, "normal");
+}
+
+// region = { type = "mesh", file = "...", ... }: the inside of a closed STL surface, read and placed
+// as an STL wall is (file relative to the scene, scale, rotate, translate, skip_degenerate).
+void read_mesh_region(TableReader& r, Region& g) {
+  g.kind = Region::Kind::Mesh;
+  std::vector<std::array<Vec3, 3>> triangles;
+  for (const Polygon& t : read_stl_wall(r)) triangles.push_back({t[0], t[1], t[2]});
+  try {
+    g.mesh = std::make_shared<const ClosedMesh>(std::move(triangles));
+  } catch (const std::invalid_argument& e) {
+    r.fail("file", e.what());
+  }
+}
+
 Region read_region(TableReader& parent, const std::string& key) {
   const toml::node& n = parent.required(key);
   if (!n.is_table()) parent.fail_at(&n, key, "expected a table, e.g. { type = \"box\", min = [...], max = [...] }");
   TableReader r(*n.as_table(), parent.file(), parent.name(key));
   Region g;
-  const std::string type = r.choice("type", {"box", "sphere"});
+  const std::string type = r.choice("type", {"box", "sphere", "cylinder", "half_space", "mesh"});
   if (type == "box") {
     g.kind = Region::Kind::Box;
     g.min = r.vec3("min");
     g.max = r.vec3("max");
     if (!((g.max - g.min).array() > 0).all()) r.fail("max", "every component of max must exceed min");
-  } else {
+  } else if (type == "sphere") {
     g.kind = Region::Kind::Sphere;
     g.centre = r.vec3("centre");
     g.radius = r.number("radius", 0, kInf, "m", true);
+  } else if (type == "cylinder") {
+    read_cylinder_region(r, g);
+  } else if (type == "half_space") {
+    read_half_space_region(r, g);
+  } else {
+    read_mesh_region(r, g);
   }
   r.finish();
   return g;

@@ -15,6 +15,7 @@
 #include "run/progress.hpp"
 #include "run/settle.hpp"
 #include "run/setup.hpp"
+#include "walls/container.hpp"
 #include "walls/servo.hpp"
 
 namespace dem {
@@ -25,23 +26,15 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-// Bulk porosity of the bed: 1 - solid volume / container volume, where the container is the walls'
-// bounding box cut at the top of the highest sphere along the direction opposite to gravity
-// (an open or half-empty box would otherwise count its empty headspace as pores).
+// Bulk porosity of the bed: 1 - solid volume / container volume, the container being the convex
+// region bounded by the walls' planes, cut at the top of the highest sphere against gravity (an
+// open or half-empty box would otherwise count its empty headspace as pores); walls/container.hpp.
 double porosity(const Simulation& sim) {
   if (sim.walls.empty() || sim.particles.size() == 0) return 0;
-  Vec3 lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
-  for (const Wall& w : sim.walls)
-    for (const Vec3& v : w.vertices_at(sim.time)) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
-  int up = 0;
-  sim.params.gravity.cwiseAbs().maxCoeff(&up);
-  const auto [plo, phi] = sphere_bounds(sim.particles);
-  if (sim.params.gravity[up] < 0) hi[up] = std::min(hi[up], phi[up]);
-  if (sim.params.gravity[up] > 0) lo[up] = std::max(lo[up], plo[up]);
-  const double box = (hi - lo).prod();
+  const double volume = Container(sim.walls, sim.time, sim.particles, sim.params.gravity).volume();
   double solid = 0;
   for (double a : sim.particles.radius) solid += sphere_volume(a);
-  return box > 0 ? 1 - solid / box : 0;
+  return volume > 0 ? 1 - solid / volume : 0;
 }
 
 void report(const char* tool, const Simulation& sim, const SettleResult& s, double wall_seconds) {
@@ -68,11 +61,23 @@ Simulation load_under_scene(const std::string& path, const Scene& scene, WallPos
   return sim;
 }
 
-// The common end of gen-primary and copy-settle: time step, settle, checkpoint, report.
+// [[generation.cut]]: each region in turn removes the particles inside (or outside) it.
+void apply_cuts(const char* tool, Simulation& sim, const std::vector<CutSpec>& cuts, const Scene& scene) {
+  for (std::size_t k = 0; k < cuts.size(); ++k) {
+    const std::size_t removed = remove_particles(sim, cuts[k].region, cuts[k].inside);
+    std::printf("%s: generation.cut[%zu] removed %zu particles, %zu remain\n", tool, k, removed, sim.particles.size());
+    if (sim.particles.size() == 0)
+      throw InputError(scene.path + ": generation.cut[" + std::to_string(k) + "] removed every particle");
+  }
+}
+
+// The common end of gen-primary and copy-settle: time step, settle, cuts (gen-primary), checkpoint,
+// report.
 void settle_and_write(const char* tool, Simulation& sim, const SettleSpec& spec, const Scene& scene, const GenerateOptions& o,
-                      Clock::time_point t0) {
+                      Clock::time_point t0, const std::vector<CutSpec>& cuts = {}) {
   sim.dt = choose_time_step(sim, scene.simulation);
   const SettleResult s = settle(sim, spec, std::string(tool) + " settle", o.quiet);
+  apply_cuts(tool, sim, cuts, scene);
   write_checkpoint(o.out, sim, meta_for(tool, scene));
   report(tool, sim, s, seconds_since(t0));
 }
@@ -86,7 +91,7 @@ void gen_primary(const GenerateOptions& o) {
   Simulation sim = simulation_from_scene(scene);
   std::mt19937_64 rng(scene.generation->seed);
   fill_random(sim, *scene.generation, rng);
-  settle_and_write("gen-primary", sim, scene.generation->settle, scene, o, t0);
+  settle_and_write("gen-primary", sim, scene.generation->settle, scene, o, t0, scene.generation->cuts);
 }
 
 void copy_settle(const GenerateOptions& o) {
@@ -135,7 +140,9 @@ void compact(const GenerateOptions& o) {
     sim.walls[k].start_motion(m, sim.time);
     servos.push_back(g);
   }
+  // Each wall's stress is its force over its area inside the container now (walls/container.hpp).
   auto stress = [&]() {
+    update_areas(sim, servos);
     const std::vector<WallLoad> f = sim.wall_loads();
     double s = 0;
     for (const ServoGroup& g : servos) s += g.stress(f);
@@ -157,6 +164,7 @@ void compact(const GenerateOptions& o) {
       ++steps;
       progress.update(steps, sim.time);
       if (steps % check != 0) continue;
+      update_areas(sim, servos);
       const std::vector<WallLoad> now = sim.wall_loads();
       bool within = true;
       for (const ServoGroup& g : servos) within = within && std::abs(g.stress(now) / c.target_stress - 1) <= 0.02;

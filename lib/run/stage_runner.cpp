@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "generation/fill.hpp"
 #include "io/checkpoint.hpp"
 #include "io/scene_parser.hpp"
 #include "io/vtk_output.hpp"
@@ -37,13 +38,7 @@ void apply_actions(Simulation& sim, const StageSpec& stage) {
       const std::size_t n = sim.bond_present_contacts(a.walls);
       std::cerr << "stage " << stage.name << ": bonded " << n << " contacts\n";
     } else {
-      std::vector<bool> keep(p.size());
-      std::size_t removed = 0;
-      for (std::size_t k = 0; k < p.size(); ++k) {
-        keep[k] = a.region.contains(p.x[k]) != a.inside;
-        removed += !keep[k];
-      }
-      p.keep_only(keep);
+      const std::size_t removed = remove_particles(sim, a.region, a.inside);
       std::cerr << "stage " << stage.name << ": removed " << removed << " particles, " << p.size() << " remain\n";
     }
   }
@@ -59,8 +54,9 @@ void start_motions(Simulation& sim, const StageSpec& stage) {
 }
 
 // The stage's servo groups, from the scene's walls as given (not their current positions), so that
-// a resumed run computes the same directions and areas to the bit; servo walls only translate,
-// which changes neither.
+// a resumed run computes the same directions to the bit; servo walls only translate, which does
+// not change them. Their areas are taken each step from the walls and particles now
+// (update_areas), which a periodic checkpoint holds exactly.
 std::vector<ServoGroup> stage_servos(const Simulation& sim, const Scene& scene, const StageSpec& stage) {
   std::vector<Wall> as_given;
   for (const WallSpec& w : scene.walls) as_given.push_back(Wall{w.name, w.material, w.vertices, {}});
@@ -112,7 +108,7 @@ void run_stage(const StageOptions& o) {
   meta.scene_text = scene.text;
   RunInfo& run = meta.run;
 
-  const std::vector<ServoGroup> servos = stage_servos(sim, scene, *stage);
+  std::vector<ServoGroup> servos = stage_servos(sim, scene, *stage);
   double k_max = 0, c_max = 0;
   servo_constants(sim, k_max, c_max);
   const std::int64_t resume_step = sim.step > run.stage_start_step ? sim.step : -1;
@@ -152,6 +148,7 @@ void run_stage(const StageOptions& o) {
   progress.finish(sim.step - run.stage_start_step, sim.time);
   if (!servos.empty()) {
     // The servo walls stop where they are; report what they hold.
+    update_areas(sim, servos);
     const std::vector<WallLoad> f = sim.wall_loads();
     for (std::size_t k = 0; k < servos.size(); ++k) {
       for (std::size_t e : servos[k].elements) sim.walls[e].start_motion(WallMotion{}, sim.time);

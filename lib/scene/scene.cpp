@@ -2,14 +2,6 @@
 
 namespace dem {
 
-bool Region::contains(const Vec3& x) const {
-  switch (kind) {
-    case Kind::Box: return (x.array() >= min.array()).all() && (x.array() <= max.array()).all();
-    case Kind::Sphere: return (x - centre).squaredNorm() <= radius * radius;
-  }
-  return false;
-}
-
 const StageSpec* Scene::stage(const std::string& name) const {
   for (const StageSpec& s : stages)
     if (s.name == name) return &s;

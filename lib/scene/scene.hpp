@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/types.hpp"
+#include "scene/region.hpp"
 #include "state/materials.hpp"
 #include "walls/wall.hpp"
 
@@ -44,6 +45,12 @@ struct PlacedSphere {
   int material = 0;
 };
 
+// `[[generation.cut]]`: remove the particles whose centre is inside (or outside) a region.
+struct CutSpec {
+  Region region;
+  bool inside = true;  // remove those inside (true) or outside (false) the region
+};
+
 struct GenerationSpec {
   Vec3 box_min, box_max;  // region to fill [m]
   int count = 0;          // random spheres, placed after `placed`
@@ -52,6 +59,7 @@ struct GenerationSpec {
   std::vector<std::pair<int, double>> material_fractions;  // material index, fraction (sum 1)
   std::uint64_t seed = 1;
   SettleSpec settle;
+  std::vector<CutSpec> cuts;  // applied in order after settling, before the checkpoint is written
 };
 
 struct CopySpec {
@@ -67,15 +75,6 @@ struct CompactSpec {
   double target_porosity = 0;      // 0 when not given (exactly one of the two is given)
   double max_time = 1.0;           // [s]
   SettleSpec settle;               // relaxation after the target is reached
-};
-
-struct Region {
-  enum class Kind { Box, Sphere };
-  Kind kind = Kind::Box;
-  Vec3 min = Vec3::Zero(), max = Vec3::Zero();  // box
-  Vec3 centre = Vec3::Zero();                   // sphere
-  double radius = 0;
-  bool contains(const Vec3& x) const;
 };
 
 struct ActionSpec {

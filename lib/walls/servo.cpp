@@ -9,12 +9,6 @@
 
 namespace dem {
 
-double polygon_area(const std::vector<Vec3>& v) {
-  Vec3 twice = Vec3::Zero();
-  for (std::size_t k = 1; k + 1 < v.size(); ++k) twice += (v[k] - v[0]).cross(v[k + 1] - v[0]);
-  return 0.5 * twice.norm();
-}
-
 double ServoGroup::stress(const std::vector<WallLoad>& loads) const {
   double f = 0;
   for (std::size_t e : elements) f -= loads[e].force.dot(inward);
@@ -64,7 +58,16 @@ void servo_constants(const Simulation& sim, double& k_max, double& c_max) {
   c_max = 2 * gamma_max * std::sqrt(m_max * k_max);  // eq. 2.27-2.28, wall: m* = m_i
 }
 
-void drive_servos(Simulation& sim, const std::vector<ServoGroup>& groups, double k_max, double c_max) {
+void update_areas(const Simulation& sim, std::vector<ServoGroup>& groups) {
+  Container container(sim.walls, sim.time, sim.particles, sim.params.gravity);
+  for (ServoGroup& g : groups) {
+    g.area = 0;
+    for (std::size_t e : g.elements) g.area += container.wall_area(e);
+  }
+}
+
+void drive_servos(Simulation& sim, std::vector<ServoGroup>& groups, double k_max, double c_max) {
+  update_areas(sim, groups);
   const std::vector<WallLoad> loads = sim.wall_loads();
   for (const ServoGroup& g : groups) {
     WallMotion m;

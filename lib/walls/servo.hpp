@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/types.hpp"
+#include "walls/container.hpp"
 #include "walls/wall.hpp"
 
 namespace dem {
@@ -13,13 +14,12 @@ namespace dem {
 class Simulation;
 struct WallLoad;
 
-// Area of a convex planar polygon [m^2].
-double polygon_area(const std::vector<Vec3>& v);
-
 struct ServoGroup {
   std::vector<std::size_t> elements;  // wall indices moved together
   Vec3 inward = Vec3::UnitZ();        // unit direction in which the group compresses the sample
-  double area = 0;                    // total element area [m^2]
+  double area = 0;                    // the elements' area in contact with the sample [m^2]: their
+                                      // polygons' area at first, then their area inside the container
+                                      // now (update_areas)
   double target = 0;                  // target normal stress [Pa], compression positive
   double max_speed = 0;               // [m/s]
   double gain = 0.2;                  // fraction of the force error corrected per step
@@ -47,7 +47,14 @@ Vec3 particle_centroid(const Simulation& sim);
 // m* = m_i) of a simulation: the servo's estimate of a contact's response.
 void servo_constants(const Simulation& sim, double& k_max, double& c_max);
 
-// Sets each group's elements to translate at its servo speed along `inward` from now.
-void drive_servos(Simulation& sim, const std::vector<ServoGroup>& groups, double k_max, double c_max);
+// Sets each group's area to the sum of its elements' areas inside the container of the particles
+// now (Container::wall_area): a lid between side walls that have moved in presses only on the
+// cross-section between them, not on its whole quad. From the walls' and particles' current
+// positions only, so a resumed run computes the same bits.
+void update_areas(const Simulation& sim, std::vector<ServoGroup>& groups);
+
+// Updates the groups' areas, then sets each group's elements to translate at its servo speed along
+// `inward` from now.
+void drive_servos(Simulation& sim, std::vector<ServoGroup>& groups, double k_max, double c_max);
 
 }  // namespace dem

@@ -4,6 +4,10 @@
 deflector.stl: ASCII, a tetrahedron (4 triangles) in millimetres.
 baffle.stl:    binary, a 40 mm square (2 triangles) in millimetres, whose 80-byte header starts
                with "solid" as some exporters write it: readers must decide by the file size.
+cube.stl:      ASCII, a closed 10 mm cube [0, 10]^3 (12 triangles, normals outward), for mesh
+               regions (stage action remove, [[generation.cut]]).
+cube_flipped.stl: the same cube with one triangle turned the other way (not consistently
+               oriented: a mesh region must reject it).
 """
 import os
 import struct
@@ -45,3 +49,14 @@ write_ascii(os.path.join(HERE, "deflector.stl"), "deflector",
 sq = [(0, 0, 0), (40, 0, 0), (40, 0, 40), (0, 0, 40)]
 write_binary(os.path.join(HERE, "baffle.stl"), "solid baffle (binary, despite this header)",
              [(sq[0], sq[1], sq[2]), (sq[0], sq[2], sq[3])])
+
+# Cube corners by bits (x, y, z); each face as two triangles, counter-clockwise seen from outside.
+c = [(10 * (k & 1), 10 * (k >> 1 & 1), 10 * (k >> 2 & 1)) for k in range(8)]
+quads = [(0, 2, 3, 1), (4, 5, 7, 6), (0, 1, 5, 4), (2, 6, 7, 3), (0, 4, 6, 2), (1, 3, 7, 5)]
+cube = []
+for a, b, d, e in quads:
+    cube += [(c[a], c[b], c[d]), (c[a], c[d], c[e])]
+write_ascii(os.path.join(HERE, "cube.stl"), "cube", cube)
+flipped = list(cube)
+flipped[5] = (flipped[5][0], flipped[5][2], flipped[5][1])
+write_ascii(os.path.join(HERE, "cube_flipped.stl"), "cube_flipped", flipped)
