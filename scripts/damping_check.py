@@ -11,7 +11,6 @@ if the simulated curve leaves the exact one by more than the tolerance.
 import argparse
 import csv
 import math
-import os
 import sys
 
 import h5py
@@ -21,7 +20,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-from post_table import save_atomically  # noqa: E402
+from post_table import save_atomically, write_csv  # noqa: E402
 
 
 def main():
@@ -79,11 +78,7 @@ def main():
         ("ratio_of_successive_half_swings", measured, "-"),
         ("max_error_over_g_per_omega_d", err, "-"),
     ]
-    with open(a.summary + ".tmp", "w", newline="") as f:
-        wr = csv.writer(f)
-        wr.writerow(["key", "value", "unit"])
-        wr.writerows(rows_out)
-    os.replace(a.summary + ".tmp", a.summary)
+    write_csv(a.summary, ["key", "value", "unit"], rows_out)
     for k, val, u in rows_out:
         print(f"damping-check: {k} = {val:.6g} {u}")
 

@@ -1,4 +1,6 @@
-"""Shared by the plotting scripts: reading post-macro's CSV tables and saving a figure atomically."""
+"""Shared by the plotting and report scripts: reading post-macro's CSV tables, writing CSV tables
+and saving figures atomically."""
+import csv
 import os
 
 import numpy as np
@@ -12,6 +14,15 @@ def read_table(csv_path: str):
         header = f.readline().strip().split(",")
     data = np.loadtxt(csv_path, delimiter=",", skiprows=2, ndmin=2)
     return title, header, data, {name: k for k, name in enumerate(header)}
+
+
+def write_csv(path: str, header, rows) -> None:
+    """A CSV table written under a temporary name and renamed: never half-written under `path`."""
+    with open(path + ".tmp", "w", newline="") as f:
+        w = csv.writer(f)
+        w.writerow(header)
+        w.writerows(rows)
+    os.replace(path + ".tmp", path)
 
 
 def save_atomically(fig, png_path: str) -> None:

@@ -10,7 +10,6 @@ the vibration amplitude (1.9 mm at 20 Hz, 3 g).
 """
 import argparse
 import csv
-import os
 
 import h5py
 import numpy as np
@@ -19,7 +18,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-from post_table import save_atomically  # noqa: E402
+from post_table import save_atomically, write_csv  # noqa: E402
 
 
 def load(path):
@@ -53,9 +52,9 @@ def read_tracks(paths, intruder):
         with open(p) as f:
             for r in csv.DictReader(f):
                 if int(r["id"]) == intruder:
-                    rows.append((float(r["time_s"]), float(r["z_m"]), float(r["vz_m_s"])))
+                    rows.append((float(r["time_s"]), float(r["z_m"])))
     rows.sort()
-    t, z, _ = (np.array(c) for c in zip(*rows))
+    t, z = (np.array(c) for c in zip(*rows))
     keep = np.concatenate(([True], np.diff(t) > 0))  # a stage's first row repeats the last one before
     return t[keep], z[keep]
 
@@ -132,15 +131,8 @@ def main():
         ("core_rise_rate", core_rate, "m/cycle"),
         ("intruder_rise_rate_in_span", big_span / span_cycles, "m/cycle"),
     ]
-    for path, header, data in (
-        (a.summary, ["key", "value", "unit"], rows),
-        (a.convection, ["wall_distance_m", "count", "mean_dz_m", "median_dz_m", "fraction_down"], profile),
-    ):
-        with open(path + ".tmp", "w", newline="") as f:
-            w = csv.writer(f)
-            w.writerow(header)
-            w.writerows(data)
-        os.replace(path + ".tmp", path)
+    write_csv(a.summary, ["key", "value", "unit"], rows)
+    write_csv(a.convection, ["wall_distance_m", "count", "mean_dz_m", "median_dz_m", "fraction_down"], profile)
     for k, v, u in rows:
         print(f"segregation: {k} = {v:.6g} {u}")
 

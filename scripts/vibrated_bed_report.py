@@ -34,7 +34,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-from post_table import save_atomically  # noqa: E402
+from post_table import save_atomically, write_csv  # noqa: E402
 
 COLUMN = 0.005     # m: width of the columns of the surface profile, about five diameters
 TOP_Q = 95         # percentile of the sphere tops in a column taken as the free surface: a few
@@ -132,14 +132,6 @@ def dominant_mode(profiles, width):
     power = [np.mean((d @ np.cos(m * np.pi * xc)) ** 2) for m in modes]
     m = int(modes[int(np.argmax(power))])
     return m, 2 * width / m
-
-
-def write_csv(path, header, rows):
-    with open(path + ".tmp", "w", newline="") as f:
-        w = csv.writer(f)
-        w.writerow(header)
-        w.writerows(rows)
-    os.replace(path + ".tmp", path)
 
 
 def main():
