@@ -61,6 +61,23 @@ else echo "FAIL forced time step warns (exit $rc)"; cat "$tmp/out"; fail=1; fi
 sed 's/^frac = 0.1/frac = 0.1\ntime_step = 1.0e-3\nforce_time_step = true/' "$data/small.toml" > "$tmp/blowup.toml"
 check "blow-up diagnosed" 5 "unstable simulation: overlap of .* between particles [0-9]* and [0-9]*, with dt = 0.001 s against the critical" -- "$bin/gen-primary" --scene "$tmp/blowup.toml" --out "$tmp/blowup.h5"
 [ -e "$tmp/blowup.h5" ] && { echo "FAIL output written after a blow-up"; fail=1; }
+# Energy created (simulation.max_energy_gain): a sphere dropped with twice the critical step gains
+# energy at its first bounce while its overlaps stay a few % of the radius; the run stops there, writes
+# no output and keeps its last periodic checkpoint (without the check it runs 40x longer, to an overlap).
+"$bin/gen-primary" --scene "$data/energy_drop.toml" --out "$tmp/drop0.h5" --quiet > /dev/null 2>&1
+check "energy gain diagnosed" 5 "unstable simulation: energy created at step [0-9]* .* the most energetic particle is id 0 (speed .* against the critical" -- \
+  "$bin/run-stage" --scene "$data/energy_drop.toml" --stage drop --in "$tmp/drop0.h5" --out "$tmp/drop1.h5" --checkpoint-every 20 --quiet
+[ -e "$tmp/drop1.h5" ] && { echo "FAIL output written after an energy gain"; fail=1; }
+check "checkpoint kept after an energy gain" 0 "" -- "$bin/post-macro" --reference "$tmp/drop0.h5" --in "$tmp/drop1.restart.h5" --vtk "$tmp/drop.vtu"
+# NaN/Inf: a gravity of 1e308 m/s^2 overflows the velocity (the energy sums overflow first and
+# are skipped: inf - inf is no excess); the non-finite check names the step and the particle.
+sed -e 's/^gravity = .*/gravity = [0.0, 0.0, -1.0e308]/' "$data/energy_drop.toml" > "$tmp/overflow.toml"
+check "non-finite state diagnosed" 5 "unstable simulation: non-finite state at step [0-9]* .* for particle id 0; check the time step" -- \
+  "$bin/run-stage" --scene "$tmp/overflow.toml" --stage drop --in "$tmp/drop0.h5" --out "$tmp/drop3.h5" --quiet
+[ -e "$tmp/drop3.h5" ] && { echo "FAIL output written after a non-finite state"; fail=1; }
+sed 's/^force_time_step = true/force_time_step = true\nmax_energy_gain = 0/' "$data/energy_drop.toml" > "$tmp/drop_nocheck.toml"
+check "energy check off: overlap stops it later" 5 "overlap of .* between particle 0 and wall floor.zmin" -- \
+  "$bin/run-stage" --scene "$tmp/drop_nocheck.toml" --stage drop --in "$tmp/drop0.h5" --out "$tmp/drop2.h5" --quiet
 
 # A full disk (here a file-size limit): the write fails with exit 4 and the previous output stays intact.
 "$bin/run-stage" --scene "$data/small.toml" --stage shake --in "$tmp/a.h5" --out "$tmp/full.h5" --quiet 2> /dev/null

@@ -248,6 +248,7 @@ void read_simulation(TableReader& top, Scene& sc) {
   s.alpha_theta = r.number_or("alpha_theta", 0.0, 0, kInf, "1/s");
   s.skin = r.number_or("skin", 0.0, 0, kInf, "m (0 = 0.2 x mean radius)");
   s.max_overlap = r.number_or("max_overlap", s.max_overlap, 0, 2, "(fraction of the smaller radius)", true);
+  s.max_energy_gain = r.number_or("max_energy_gain", s.max_energy_gain, 0, kInf, "(fraction of the energy scale; 0 = no check)");
   r.finish();
 }
 

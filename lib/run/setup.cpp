@@ -19,6 +19,7 @@ SimParams params_from(const Scene& scene) {
   p.alpha_theta = scene.simulation.alpha_theta;
   p.skin = scene.simulation.skin;
   p.max_overlap = scene.simulation.max_overlap;
+  p.max_energy_gain = scene.simulation.max_energy_gain;
   return p;
 }
 

@@ -21,6 +21,7 @@ struct SimulationSpec {
   double alpha_r = 0, alpha_theta = 0;  // global damping [1/s], eq. 2.36-2.37
   double skin = 0;                      // neighbour-list skin [m]; 0 = automatic
   double max_overlap = 0.5;             // unstable-run check: overlap / smaller radius
+  double max_energy_gain = 0.5;         // unstable-run check: energy created / energy scale; 0 = off
 };
 
 struct WallSpec {

@@ -16,6 +16,7 @@ void Simulation::advance() {
   const double worst_overlap = compute_contact_forces(in, choose_force_variant(*this), pairs_, walls_);
   contacts_modified();
   if (worst_overlap > params.max_overlap) report_overlap(worst_overlap);
+  if (params.max_energy_gain > 0) audit_energy();
   sum_forces();
   integrate();
   time += dt;
@@ -52,6 +53,7 @@ void Simulation::set_contacts(ContactList pairs, ContactList walls) {
   }
   neighbours_ = NeighbourList();  // the next step finds the candidates and carries this history over
   contacts_modified();
+  energy_.valid = false;  // particles or contacts changed: the energy check takes a new reference
   count_bonds();
 }
 
@@ -207,6 +209,49 @@ void Simulation::integrate() {
   }
 }
 
+void Simulation::audit_energy() {
+  // Called with the forces at x^n computed and the velocities still at n-1/2 (sim/energy_audit.hpp).
+  EnergyBalance& b = energy_;
+  if (!b.valid || b.particles != particles.size()) {
+    b = EnergyBalance{};
+    b.valid = true;
+    b.step0 = step;
+    b.particles = particles.size();
+    b.start = b.now = mechanical_energy(particles, params.gravity);
+    b.stored0 = stored_energy_bound(particles, materials, walls, wall_geometry_, pairs_, walls_);
+    for (std::size_t k = 0; k < particles.size(); ++k) b.potential_scale += particles.mass[k] * params.gravity.norm() * particles.radius[k];
+    return;
+  }
+  const double work = wall_power(particles, wall_geometry_, walls_) * dt;
+  b.wall_work += work;
+  b.wall_work_abs += std::abs(work);
+  if ((step - b.step0) % kEnergyCheckEvery != 0) return;
+  b.now = mechanical_energy(particles, params.gravity);
+  if (b.excess() > params.max_energy_gain * b.scale()) report_energy_gain();
+}
+
+void Simulation::report_energy_gain() const {
+  const EnergyBalance& b = energy_;
+  const Particles& p = particles;
+  std::size_t top = 0;  // the particle with the most kinetic energy
+  double top_e = -1, top_rot = 0;
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    const double rot = 0.5 * p.inertia(k) * p.w[k].squaredNorm();
+    const double e = 0.5 * p.mass[k] * p.v[k].squaredNorm() + rot;
+    if (e > top_e) top = k, top_e = e, top_rot = rot;
+  }
+  std::ostringstream m;
+  m << "energy created at step " << step << " (t = " << time << " s): since step " << b.step0
+    << " the particles' kinetic + potential energy rose by " << b.now.total() - b.start.total() << " J, "
+    << b.excess() << " J more than the walls' work (" << b.wall_work << " J) and the elastic energy then stored in the contacts (at most "
+    << b.stored0 << " J) can supply (limit simulation.max_energy_gain = " << params.max_energy_gain << " x the energy scale "
+    << b.scale() << " J); the most energetic particle is id " << p.id[top] << " (speed " << p.v[top].norm() << " m/s, spin "
+    << p.w[top].norm() << " rad/s, " << (top_e > 0 ? 100 * top_rot / top_e : 0) << " % of its energy in rotation), with dt = " << dt
+    << " s against the critical " << critical_time_step()
+    << " s of eq. 2.48: lower the time step (frac), or check kn and kt (kt acts on the spin as well, which needs a shorter step)";
+  throw PhysicsError(m.str());
+}
+
 double Simulation::critical_time_step() const {
   double mmin = std::numeric_limits<double>::infinity();
   for (double m : particles.mass) mmin = std::min(mmin, m);
@@ -215,12 +260,7 @@ double Simulation::critical_time_step() const {
   return 2 * std::sqrt(mmin / (2 * kmax));  // eq. 2.48 (Hart et al.), without FRAC
 }
 
-double Simulation::kinetic_energy() const {
-  double e = 0;
-  for (std::size_t i = 0; i < particles.size(); ++i)
-    e += 0.5 * particles.mass[i] * particles.v[i].squaredNorm() + 0.5 * particles.inertia(i) * particles.w[i].squaredNorm();
-  return e;
-}
+double Simulation::kinetic_energy() const { return mechanical_energy(particles, params.gravity).kinetic; }
 
 // Reads the candidates directly (no compaction: the stress servo calls it every step). key_j (the
 // wall index) is valid even before the first step after a restart, when slots are not: torques,

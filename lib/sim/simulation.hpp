@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "contact/contact_list.hpp"
+#include "sim/energy_audit.hpp"
 #include "search/neighbour_list.hpp"
 #include "state/materials.hpp"
 #include "state/particles.hpp"
@@ -17,6 +18,8 @@ struct SimParams {
   double alpha_r = 0;                // global translational damping [1/s], eq. 2.36
   double alpha_theta = 0;            // global rotational damping [1/s], eq. 2.37
   double max_overlap = 0.5;          // stop when an overlap exceeds this fraction of the smaller radius
+  double max_energy_gain = 0.5;      // stop when energy is created beyond this fraction of the energy
+                                     // scale (sim/energy_audit.hpp); 0 = no check
   double skin = 0;                   // neighbour-list skin [m]; 0 = 0.2 x mean radius. Speed only:
                                      // the contacts found do not depend on it
 };
@@ -62,6 +65,11 @@ class Simulation {
   std::int64_t neighbour_builds() const { return neighbours_.builds(); }
 
   double kinetic_energy() const;  // translational + rotational [J]
+  // The energy balance of the unstable-run check since its reference step (the first step, or the
+  // first after set_contacts or a change in the particle count); updated every
+  // kEnergyCheckEvery steps while params.max_energy_gain > 0.
+  const EnergyBalance& energy_balance() const { return energy_; }
+  static constexpr int kEnergyCheckEvery = 10;
   // Force, contacts and (if `torques`, only after a step) torque about the origin (contact point x
   // force) per wall element this step.
   std::vector<WallLoad> wall_loads(bool torques = false) const;
@@ -69,6 +77,8 @@ class Simulation {
 
  private:
   [[noreturn]] void report_overlap(double worst) const;
+  void audit_energy();
+  [[noreturn]] void report_energy_gain() const;
   void update_wall_geometry();
   void find_contacts();
   void count_bonds();
@@ -77,6 +87,7 @@ class Simulation {
   void integrate();
 
   bool has_bonds_ = false;
+  EnergyBalance energy_;
   NeighbourList neighbours_;
   // Every candidate pair of the neighbour list, with its history; `active` = a contact this step.
   ContactList pairs_, walls_;

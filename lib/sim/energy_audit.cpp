@@ -1,0 +1,65 @@
+#include "sim/energy_audit.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace dem {
+
+MechanicalEnergy mechanical_energy(const Particles& p, const Vec3& gravity) {
+  MechanicalEnergy e;
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    e.kinetic += 0.5 * p.mass[k] * p.v[k].squaredNorm() + 0.5 * p.inertia(k) * p.w[k].squaredNorm();
+    e.potential -= p.mass[k] * gravity.dot(p.x[k]);
+  }
+  return e;
+}
+
+namespace {
+
+// Normal part of the bound for overlap u (> 0 compression) of a pair with constants q.
+double normal_energy_bound(const PairParams& q, double u, bool bonded) {
+  if (u >= 0) return 0.5 * q.kn * u * u;
+  return bonded ? q.tensile_strength * -u : 0.0;
+}
+
+double spring_energy(const PairParams& q, const Vec3& spring) { return q.kt > 0 ? 0.5 * spring.squaredNorm() / q.kt : 0.0; }
+
+}  // namespace
+
+double stored_energy_bound(const Particles& p, const MaterialTable& materials, const std::vector<Wall>& walls,
+                           const std::vector<WallGeometry>& geometry, const ContactList& pairs, const ContactList& wall_contacts) {
+  double e = 0;
+  for (std::size_t k = 0; k < pairs.size(); ++k) {
+    if (!pairs.active[k]) continue;
+    const int i = pairs.slot_i[k], j = pairs.slot_j[k];
+    const PairParams& q = materials.pair(p.material[i], p.material[j]);
+    const double u = p.radius[i] + p.radius[j] - (p.x[j] - p.x[i]).norm();
+    e += normal_energy_bound(q, u, pairs.bonded[k]) + spring_energy(q, pairs.spring[k]);
+  }
+  for (std::size_t k = 0; k < wall_contacts.size(); ++k) {
+    if (!wall_contacts.active[k]) continue;
+    const int i = wall_contacts.slot_i[k], w = wall_contacts.slot_j[k];
+    const PairParams& q = materials.pair(p.material[i], walls[w].material);
+    const double u = p.radius[i] - (closest_point(geometry[w], p.x[i]) - p.x[i]).norm();
+    e += normal_energy_bound(q, u, wall_contacts.bonded[k]) + spring_energy(q, wall_contacts.spring[k]);
+  }
+  return e;
+}
+
+double wall_power(const Particles& p, const std::vector<WallGeometry>& geometry, const ContactList& wall_contacts) {
+  double power = 0;
+  for (std::size_t k = 0; k < wall_contacts.size(); ++k) {
+    if (!wall_contacts.active[k]) continue;
+    const WallGeometry& g = geometry[wall_contacts.slot_j[k]];
+    if (g.velocity.isZero(0) && g.spin.isZero(0)) continue;
+    const Vec3 x = closest_point(g, p.x[wall_contacts.slot_i[k]]);
+    power += wall_contacts.force(k).dot(g.velocity_of(x));
+  }
+  return power;
+}
+
+double EnergyBalance::scale() const {
+  return std::max(0.0, start.kinetic) + stored0 + wall_work_abs + std::abs(now.potential - start.potential) + potential_scale;
+}
+
+}  // namespace dem

@@ -1,0 +1,60 @@
+#pragma once
+// The energy check of the unstable-run guard (simulation.max_energy_gain). Between a reference
+// step and now, the particles' kinetic + potential energy can grow by no more than the elastic
+// energy their contacts stored at the reference plus the work the walls did on them since: contact
+// damping, friction, global damping and breaking bonds only take energy away. An explicit step too
+// long for a contact's stiffness (eq. 2.48) creates energy at every contact it touches, so the
+// excess grows with no bound, often long before an overlap or a NaN would stop the run.
+//
+// Kinetic energy is taken at the half step v^{n-1/2} and the potential energy at x^n; leapfrog's
+// energy error is bounded and of order (ω Δt)² of the energy in motion, which the tolerance covers.
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "contact/contact_list.hpp"
+#include "state/materials.hpp"
+#include "state/particles.hpp"
+#include "walls/wall.hpp"
+
+namespace dem {
+
+// Kinetic (translational + rotational) and gravitational potential energy -Σ m g·x [J], summed in
+// storage order (one thread: the same bits for any thread count).
+struct MechanicalEnergy {
+  double kinetic = 0;
+  double potential = 0;
+  double total() const { return kinetic + potential; }
+};
+MechanicalEnergy mechanical_energy(const Particles& p, const Vec3& gravity);
+
+// An upper bound on the elastic energy stored in the active contacts [J]: ½ kn u² in compression
+// (every law is linear there), F s for a bonded pair held in tension s (the attraction never
+// exceeds the strength F), ½ |f_s|²/kt in the tangential spring.
+double stored_energy_bound(const Particles& p, const MaterialTable& materials, const std::vector<Wall>& walls,
+                           const std::vector<WallGeometry>& geometry, const ContactList& pairs, const ContactList& wall_contacts);
+
+// Power the walls deliver to the particles this step: Σ f·v_wall at the contact point [W], over the
+// active wall contacts (f the force on the particle). Walls at rest are skipped.
+double wall_power(const Particles& p, const std::vector<WallGeometry>& geometry, const ContactList& wall_contacts);
+
+// The running balance kept by Simulation between a reference step and now.
+struct EnergyBalance {
+  bool valid = false;          // false: the next step takes a new reference
+  std::int64_t step0 = 0;      // the reference step
+  std::size_t particles = 0;   // particle count at the reference (a change re-takes it)
+  MechanicalEnergy start;      // at the reference
+  double stored0 = 0;          // stored_energy_bound at the reference [J]
+  double potential_scale = 0;  // Σ m |g| a: one radius of fall for every particle [J]
+  double wall_work = 0;        // ∫ wall_power dt since the reference [J]
+  double wall_work_abs = 0;    // ∫ |wall_power| dt [J]
+  MechanicalEnergy now;        // at the last check
+
+  // Energy the particles hold beyond what they could have been given [J]; <= 0 in a sound run.
+  double excess() const { return now.total() - start.total() - stored0 - wall_work; }
+  // What the excess is compared with: the energy that has flowed through the system, plus one radius
+  // of fall so that a bed at rest has a scale [J].
+  double scale() const;
+};
+
+}  // namespace dem
