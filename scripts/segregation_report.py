@@ -59,6 +59,25 @@ def read_tracks(paths, intruder):
     return t[keep], z[keep]
 
 
+def per_cycle_height(t, z, t0, frequency):
+    """The intruder's centre height averaged over each whole cycle since t0 (64 equally spaced
+    phases, since the samples do not divide a cycle evenly): (cycle midpoints, heights)."""
+    cycles = (t - t0) * frequency
+    cyc = np.arange(int(np.floor(cycles[-1])))
+    phases = (np.arange(64) + 0.5) / 64
+    return cyc + 0.5, np.array([np.interp(c + phases, cycles, z).mean() for c in cyc])
+
+
+def arrival_cycle(mid, zc, big_r, surface, small_d):
+    """First cycle whose mean puts the intruder's top within one small diameter of `surface`, and
+    the fraction of the cycles from then on that stay there (nan, nan if it never gets there)."""
+    at = zc + big_r >= surface - small_d
+    hit = np.nonzero(at)[0]
+    if not hit.size:
+        return float("nan"), float("nan")
+    return float(mid[hit[0]]), float(at[hit[0]:].mean())
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--start", required=True, help="checkpoint at the start of vibration")
@@ -70,6 +89,8 @@ def main():
     ap.add_argument("--summary", required=True, help="summary CSV (key,value,unit)")
     ap.add_argument("--convection", required=True, help="convection profile CSV")
     ap.add_argument("--png", required=True)
+    ap.add_argument("--rise-track", help="track CSV of the same settled bed shaken harder (stage rise)")
+    ap.add_argument("--rise-gamma", type=float, default=5.0, help="peak acceleration of that stage [g]")
     a = ap.parse_args()
 
     start, span = load(a.start), load(a.span)
@@ -85,12 +106,8 @@ def main():
     # at the end). Per-cycle means remove the vibration's own up-and-down.
     h_start, _ = surface_height(start, [a.intruder])
     h_end, top_end = surface_height(end, [a.intruder])
-    # The samples do not divide a cycle evenly: average over 64 equally spaced phases instead.
-    cyc = np.arange(int(np.floor(cycles[-1])))
-    phases = (np.arange(64) + 0.5) / 64
-    zc = np.array([np.interp(c + phases, cycles, z).mean() for c in cyc])
-    arrived = np.nonzero(zc + big_r >= h_end - small_d)[0]
-    arrival = float(cyc[arrived[0]] + 0.5) if arrived.size else float("nan")
+    mid, zc = per_cycle_height(t, z, t0, a.frequency)
+    arrival, _ = arrival_cycle(mid, zc, big_r, h_end, small_d)
 
     # Convection over the first span: mean vertical displacement of the small spheres against the
     # distance of their starting position from the nearest side wall.
@@ -131,18 +148,32 @@ def main():
         ("core_rise_rate", core_rate, "m/cycle"),
         ("intruder_rise_rate_in_span", big_span / span_cycles, "m/cycle"),
     ]
+    if a.rise_track:
+        # The same settled bed shaken harder: arrival against the surface at rest before shaking
+        # (a strongly shaken bed is dilated, so its own surface at an instant is no fixed mark).
+        rt, rz = read_tracks([a.rise_track], a.intruder)
+        rmid, rzc = per_cycle_height(rt, rz, t0, a.frequency)
+        r_arrival, r_stay = arrival_cycle(rmid, rzc, big_r, h_start, small_d)
+        rows += [
+            ("rise_cycles", rmid[-1] + 0.5, "cycles"),
+            ("rise_peak_acceleration", a.rise_gamma, "g"),
+            ("rise_intruder_centre_end", rzc[-1], "m"),
+            ("rise_reaches_surface_after", r_arrival, "cycles"),
+            ("rise_fraction_of_later_cycles_at_surface", r_stay, "-"),
+        ]
     write_csv(a.summary, ["key", "value", "unit"], rows)
     write_csv(a.convection, ["wall_distance_m", "count", "mean_dz_m", "median_dz_m", "fraction_down"], profile)
     for k, v, u in rows:
         print(f"segregation: {k} = {v:.6g} {u}")
 
-    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(10, 4.2), dpi=120)
+    fig, axes = plt.subplots(1, 3 if a.rise_track else 2, figsize=(15 if a.rise_track else 10, 4.2), dpi=120)
+    ax1, ax2 = axes[0], axes[1]
     ax1.plot(cycles, z * 1e3, lw=0.4, color="0.6", label="intruder centre")
-    ax1.plot(cyc + 0.5, zc * 1e3, lw=1.6, color="C0", label="per-cycle mean")
+    ax1.plot(mid, zc * 1e3, lw=1.6, color="C0", label="per-cycle mean")
     ax1.axhline((h_end - big_r) * 1e3, color="C3", ls="--", lw=1, label="centre at the surface (end)")
     ax1.axhline((h_start - big_r) * 1e3, color="C3", ls=":", lw=1, label="centre at the surface (start)")
     ax1.axvline(span_cycles, color="0.3", lw=0.8, ls="-.", label="thesis span (4.7 s)")
-    if arrived.size:
+    if np.isfinite(arrival):
         ax1.axvline(arrival, color="C2", lw=1, label=f"reaches the surface: {arrival:.0f} cycles")
     ax1.set_xlabel(f"cycles at {a.frequency:g} Hz")
     ax1.set_ylabel("height [mm]")
@@ -156,6 +187,18 @@ def main():
     ax2.set_ylabel(f"vertical displacement in {span_cycles:.0f} cycles [mm]")
     ax2.set_title("Convection: down along the walls, up in the centre", fontsize=9)
     ax2.legend(fontsize=7)
+    if a.rise_track:
+        ax3 = axes[2]
+        ax3.plot((rt - t0) * a.frequency, rz * 1e3, lw=0.4, color="0.6", label="intruder centre")
+        ax3.plot(rmid, rzc * 1e3, lw=1.6, color="C0", label="per-cycle mean")
+        ax3.axhline((h_start - big_r - small_d) * 1e3, color="C3", ls=":", lw=1,
+                    label="top within one small diameter of the surface at rest")
+        if np.isfinite(r_arrival):
+            ax3.axvline(r_arrival, color="C2", lw=1, label=f"reaches the surface: {r_arrival:.0f} cycles")
+        ax3.set_xlabel(f"cycles at {a.frequency:g} Hz")
+        ax3.set_ylabel("height [mm]")
+        ax3.set_title(f"The same bed at {a.rise_gamma:g} g", fontsize=9)
+        ax3.legend(fontsize=7, loc="lower right")
     save_atomically(fig, a.png)
     plt.close(fig)
 

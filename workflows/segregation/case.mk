@@ -1,6 +1,7 @@
 # Brazil-nut segregation (thesis §4.5): the README's demo.
-#   make -f Makefile.cases segregation        generate, settle, vibrate 94 cycles (the thesis's span),
-#                                             post-process, report and plot (a few minutes)
+#   make -f Makefile.cases segregation        generate, settle, vibrate 94 cycles at 3 g (the thesis's
+#                                             span) and, from the same bed, 150 at 5 g; post-process,
+#                                             report and plot (about 8 minutes on 2 cores)
 #   make -f Makefile.cases segregation-long   continue to 1,000 cycles and report the rise again
 SEG_DIR := $(OUT)/segregation
 SEG_SCENE := workflows/segregation/scene.toml
@@ -15,6 +16,12 @@ $(SEG_DIR)/vibrated.h5 $(SEG_DIR)/intruder.csv &: $(SEG_SCENE) $(SEG_DIR)/settle
 	  --track $(SEG_DIR)/intruder.csv --track-ids 0 --track-every 100 --vtk $(SEG_DIR)/vtk \
 	  --checkpoint-every 50000 --restart
 
+# The same settled bed at 5 g (stage rise), where the large sphere reaches the surface.
+$(SEG_DIR)/risen.h5 $(SEG_DIR)/intruder_rise.csv &: $(SEG_SCENE) $(SEG_DIR)/settled.h5 $(BIN)/run-stage
+	$(BIN)/run-stage --scene $(SEG_SCENE) --stage rise --in $(SEG_DIR)/settled.h5 --out $(SEG_DIR)/risen.h5 \
+	  --track $(SEG_DIR)/intruder_rise.csv --track-ids 0 --track-every 100 --vtk $(SEG_DIR)/vtk \
+	  --checkpoint-every 50000 --restart
+
 # Particles coloured by their displacement over the span, and the displacement field on an 8 mm grid
 # (kernel width one small diameter): open in ParaView with the VTK series in vtk/.
 $(SEG_DIR)/displacement.vtu $(SEG_DIR)/fields.vti &: $(SEG_DIR)/settled.h5 $(SEG_DIR)/vibrated.h5 $(BIN)/post-macro
@@ -22,9 +29,9 @@ $(SEG_DIR)/displacement.vtu $(SEG_DIR)/fields.vti &: $(SEG_DIR)/settled.h5 $(SEG
 	  --grid $(SEG_DIR)/fields.vti --cell 0.008 --width 0.008
 
 $(SEG_DIR)/segregation.png $(SEG_DIR)/summary.csv $(SEG_DIR)/convection.csv &: $(SEG_DIR)/settled.h5 $(SEG_DIR)/vibrated.h5 \
-    $(SEG_DIR)/intruder.csv scripts/segregation_report.py scripts/post_table.py
+    $(SEG_DIR)/intruder.csv $(SEG_DIR)/intruder_rise.csv scripts/segregation_report.py scripts/post_table.py
 	$(SEG_REPORT) --start $(SEG_DIR)/settled.h5 --span $(SEG_DIR)/vibrated.h5 --track $(SEG_DIR)/intruder.csv \
-	  --summary $(SEG_DIR)/summary.csv --convection $(SEG_DIR)/convection.csv --png $(SEG_DIR)/segregation.png
+	  --rise-track $(SEG_DIR)/intruder_rise.csv --rise-gamma 5 --summary $(SEG_DIR)/summary.csv --convection $(SEG_DIR)/convection.csv --png $(SEG_DIR)/segregation.png
 
 $(SEG_DIR)/long.h5 $(SEG_DIR)/intruder_long.csv &: $(SEG_SCENE) $(SEG_DIR)/vibrated.h5 $(BIN)/run-stage
 	$(BIN)/run-stage --scene $(SEG_SCENE) --stage continue --in $(SEG_DIR)/vibrated.h5 --out $(SEG_DIR)/long.h5 \
@@ -40,7 +47,7 @@ $(SEG_DIR)/segregation_long.png $(SEG_DIR)/summary_long.csv $(SEG_DIR)/convectio
 .PHONY: segregation segregation-outputs segregation-long segregation-long-outputs
 segregation: build
 	@$(MAKE) --no-print-directory -f $(SELF) segregation-outputs
-	@echo "segregation: VTK series $(SEG_DIR)/vtk/vibrate_particles.pvd (walls: vibrate_walls.pvd), displacement $(SEG_DIR)/displacement.vtu, fields $(SEG_DIR)/fields.vti"
+	@echo "segregation: VTK series $(SEG_DIR)/vtk/vibrate_particles.pvd and rise_particles.pvd (walls: vibrate_walls.pvd), displacement $(SEG_DIR)/displacement.vtu, fields $(SEG_DIR)/fields.vti"
 	@echo "segregation: plot $(SEG_DIR)/segregation.png, figures $(SEG_DIR)/summary.csv, convection profile $(SEG_DIR)/convection.csv"
 segregation-outputs: $(SEG_DIR)/segregation.png $(SEG_DIR)/displacement.vtu
 segregation-long: build
@@ -48,3 +55,32 @@ segregation-long: build
 	@echo "segregation-long: plot $(SEG_DIR)/segregation_long.png, figures $(SEG_DIR)/summary_long.csv"
 segregation-long-outputs: $(SEG_DIR)/segregation_long.png
 CASES += segregation
+
+# Rise against the shaking (workflows/segregation/sweep.toml, automatic time step): 600 cycles at
+# 3, 4 and 5 g (20 Hz) and at 3 g (10 Hz) from one settled bed; about 20 minutes on one core.
+#   make -f Makefile.cases segregation-sweep
+SEG_SWEEP := workflows/segregation/sweep.toml
+SEG_SWEEP_DIR := $(SEG_DIR)/sweep
+SEG_SWEEP_RUNS := g3:20:3 g4:20:4 g5:20:5 g3_10hz:10:3# stage:frequency [Hz]:peak acceleration [g]
+seg_sweep_word = $(word $(2),$(subst :, ,$(1)))
+seg_sweep_run = --run $(call seg_sweep_word,$(1),1) $(SEG_SWEEP_DIR)/$(call seg_sweep_word,$(1),1).csv \
+  $(call seg_sweep_word,$(1),2) $(call seg_sweep_word,$(1),3)
+
+$(SEG_SWEEP_DIR)/settled.h5: $(SEG_SWEEP) $(BIN)/gen-primary
+	$(BIN)/gen-primary --scene $(SEG_SWEEP) --out $@
+
+$(SEG_SWEEP_DIR)/%.h5 $(SEG_SWEEP_DIR)/%.csv: $(SEG_SWEEP) $(SEG_SWEEP_DIR)/settled.h5 $(BIN)/run-stage
+	$(BIN)/run-stage --scene $(SEG_SWEEP) --stage $* --in $(SEG_SWEEP_DIR)/settled.h5 --out $(SEG_SWEEP_DIR)/$*.h5 \
+	  --track $(SEG_SWEEP_DIR)/$*.csv --track-ids 0 --track-every 100 --checkpoint-every 200000 --restart
+
+$(SEG_SWEEP_DIR)/sweep.csv $(SEG_SWEEP_DIR)/sweep.png &: $(SEG_SWEEP_DIR)/settled.h5 \
+    $(foreach r,$(SEG_SWEEP_RUNS),$(SEG_SWEEP_DIR)/$(call seg_sweep_word,$(r),1).h5) \
+    scripts/segregation_sweep.py scripts/segregation_report.py scripts/post_table.py
+	$(PYTHON) scripts/segregation_sweep.py --start $(SEG_SWEEP_DIR)/settled.h5 \
+	  $(foreach r,$(SEG_SWEEP_RUNS),$(call seg_sweep_run,$(r))) --table $(SEG_SWEEP_DIR)/sweep.csv --png $(SEG_SWEEP_DIR)/sweep.png
+
+.PHONY: segregation-sweep segregation-sweep-outputs
+segregation-sweep: build
+	@$(MAKE) --no-print-directory -f $(SELF) segregation-sweep-outputs
+	@echo "segregation-sweep: table $(SEG_SWEEP_DIR)/sweep.csv, plot $(SEG_SWEEP_DIR)/sweep.png"
+segregation-sweep-outputs: $(SEG_SWEEP_DIR)/sweep.csv
