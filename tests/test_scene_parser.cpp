@@ -164,6 +164,8 @@ std::vector<BadCase> bad_cases() {
       {"unknown action", kValid + "\n[[stage.action]]\ntype = \"explode\"\n", {"stage[0].action[0].type = \"explode\"", "\"remove\""}},
       {"max_overlap zero", replace(kValid, "gravity = [0.0, 0.0, -9.81]", "gravity = [0.0, 0.0, -9.81]\nmax_overlap = 0.0"),
        {"simulation.max_overlap = 0", "(0, 2]"}},
+      {"max_energy_gain negative", replace(kValid, "gravity = [0.0, 0.0, -9.81]", "gravity = [0.0, 0.0, -9.81]\nmax_energy_gain = -1.0"),
+       {"simulation.max_energy_gain = -1", "[0,", "0 = no check"}},
       {"negative skin", replace(kValid, "gravity = [0.0, 0.0, -9.81]", "gravity = [0.0, 0.0, -9.81]\nskin = -0.001"),
        {"simulation.skin = -0.001", "[0, inf) m"}},
       {"unknown law in a pair", replace(kValid, "[[wall]]", "[[pair]]\nmaterials = [\"glass\", \"glass\"]\nlaw = \"hooke\"\n\n[[wall]]"),
