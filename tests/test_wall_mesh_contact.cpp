@@ -113,6 +113,31 @@ TEST(MeshContact, ConcaveCornerCountsBothFaces) {
   EXPECT_LT((got - want).norm(), 1e-9 * want.norm()) << got.transpose() << " vs " << want.transpose();
 }
 
+// Bonding to a mesh (stage action bond with walls = true) bonds each touch once: a sphere resting
+// on a vertex where 8 triangles meet touches all 8, but the force loop counts one contact, so one
+// bond; in the concave corner both faces are contacts and both are bonded.
+TEST(MeshContact, BondsToAMeshCountEachTouchOnce) {
+  const double a = 0.01;
+  for (const bool corner : {false, true}) {
+    Simulation sim;
+    Material m = elastic(1e5);
+    m.law = NormalLaw::Liu;
+    m.tensile_strength = 1.0;
+    sim.materials = MaterialTable({m}, {});
+    sim.walls = split_square(0.1, 4);  // (0.05, 0.05) is a vertex of 8 triangles
+    Vec3 centre(0.05, 0.05, a - 1e-6);
+    if (corner) {
+      sim.walls.push_back(Wall{"side", 0, box_face(Vec3(0, 0, 0), Vec3(0.1, 0.1, 0.1), 0, false), {}});
+      centre = Vec3(a - 1e-6, 0.05, a - 1e-6);  // (0, 0.05) is a vertex of 4 floor triangles
+    }
+    sim.particles.add(0, centre, a, 2500, 0);
+    sim.dt = 1e-6;
+    EXPECT_EQ(sim.bond_present_contacts(true), corner ? 2u : 1u) << (corner ? "corner" : "vertex");
+    sim.advance();
+    EXPECT_EQ(sim.wall_contacts().size(), corner ? 2u : 1u);
+  }
+}
+
 // A sphere thrown sliding and spinning across a floor of 2 x 8 x 8 triangles follows the same
 // path as on one quad: the tangential spring passes from element to element, so there is no
 // snag. Tolerance: 1e-9 of the distance travelled (round-off of the different contact points).

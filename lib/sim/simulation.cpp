@@ -88,13 +88,23 @@ std::size_t Simulation::bond_present_contacts(bool walls_too) {
   std::size_t n = 0;
   for (std::size_t k = 0; k < pairs_.size(); ++k)
     if (pair_touching(p, pairs_.slot_i[k], pairs_.slot_j[k]) || pairs_.bonded[k]) pairs_.bonded[k] = pairs_.active[k] = 1, ++n;
-  if (walls_too)
-    for (std::size_t k = 0; k < walls_.size(); ++k) {
-      const int i = walls_.slot_i[k];
-      Vec3 d;
-      if (wall_gap2(p, wall_geometry_[walls_.slot_j[k]], i, d) < p.radius[i] * p.radius[i] || walls_.bonded[k])
-        walls_.bonded[k] = walls_.active[k] = 1, ++n;
+  if (walls_too) {
+    // Per particle, the touches the force loop counts (select_wall_contacts): where mesh elements
+    // meet, one touch seen by two elements is one contact and gets one bond.
+    std::vector<Vec3> to_wall;
+    std::vector<std::uint8_t> touching, take;
+    std::vector<int> order;
+    for (std::size_t r = 0; r + 1 < wall_runs_.size(); ++r) {
+      const int first = wall_runs_[r], count = wall_runs_[r + 1] - first;
+      const int i = walls_.slot_i[first];
+      to_wall.resize(count), touching.resize(count), take.resize(count), order.resize(count);
+      for (int e = 0; e < count; ++e)
+        touching[e] = wall_gap2(p, wall_geometry_[walls_.slot_j[first + e]], i, to_wall[e]) < p.radius[i] * p.radius[i];
+      select_wall_contacts(to_wall.data(), touching.data(), count, p.radius[i], take.data(), order.data());
+      for (int e = 0; e < count; ++e)
+        if (take[e] || walls_.bonded[first + e]) walls_.bonded[first + e] = walls_.active[first + e] = 1, ++n;
     }
+  }
   contacts_modified();
   count_bonds();
   return n;
