@@ -20,7 +20,7 @@ def main(path, expect_writer):
         assert n > 0 and m > 0
         # path: (dtype kind, shape, units or None)
         spec = {
-            "scene/text": ("S", (1,), None), "scene/path": ("S", (1,), None),
+            "scene/text": ("S", (1,), None), "scene/path": ("S", (1,), None), "scene/walls": ("S", (1,), None),
             "state/time": ("f", (1,), "s"), "state/step": ("i", (1,), None), "state/dt": ("f", (1,), "s"),
             "state/gravity": ("f", (1, 3), "m/s^2"), "state/alpha_r": ("f", (1,), "1/s"),
             "state/alpha_theta": ("f", (1,), "1/s"),

@@ -2,7 +2,9 @@
 # Mesh walls through the tools: gen-primary pours spheres through a cone-mesh hopper onto a floor
 # of 2 x 2 quads beside STL walls (tests/data/mesh_walls.toml), run-stage lifts the hopper (a
 # wall group) and writes VTK. Checks: every element is in the checkpoint under its NAME.K name,
-# and no sphere fell through the meshed floor (centres stay above half a radius).
+# and no sphere fell through the meshed floor (centres stay above half a radius). Then: an STL file
+# edited while a run is interrupted is refused by --restart (the scene text is the same, the
+# walls it builds are not), and restored it is accepted again.
 set -euo pipefail
 bin=$1 data=$2 py=$3
 tmp=$(mktemp -d)
@@ -23,3 +25,28 @@ r = f["/particles/radius"][:]
 assert len(z) == 150 and (z > 0.5 * r).all(), "a sphere fell through the floor: min z = %g" % z.min()
 print("mesh walls: %d elements, %d spheres above the floor" % (len(names), len(z)))
 PY
+
+# An interrupted run (kill -9 after its first periodic checkpoints), the deflector's STL edited
+# (one vertex 1 mm lower), --restart: refused with exit 3; the file restored: it resumes.
+mkdir "$tmp/edit"
+cp "$data/mesh_walls.toml" "$data/deflector.stl" "$data/baffle.stl" "$tmp/edit/"
+sed -i 's/^duration = 0.02$/duration = 100.0/' "$tmp/edit/mesh_walls.toml"
+grep -q '^duration = 100.0$' "$tmp/edit/mesh_walls.toml"
+args=(--scene "$tmp/edit/mesh_walls.toml" --stage lift --in "$tmp/p.h5" --out "$tmp/edit/l.h5" --checkpoint-every 20 --restart --quiet)
+"$bin/run-stage" "${args[@]}" & pid=$!
+for _ in $(seq 100); do [ -e "$tmp/edit/l.restart.h5" ] && break; sleep 0.1; done
+sleep 0.3; kill -9 $pid; wait $pid 2> /dev/null || true
+test -e "$tmp/edit/l.restart.h5"
+cp "$tmp/edit/deflector.stl" "$tmp/edit/deflector.orig"
+sed -i '0,/vertex 0 15 0/s//vertex 0 15 -1/' "$tmp/edit/deflector.stl"
+! cmp -s "$tmp/edit/deflector.stl" "$tmp/edit/deflector.orig"
+rc=0; timeout 5 "$bin/run-stage" "${args[@]}" > "$tmp/edit/out" 2>&1 || rc=$?
+if [ $rc -ne 3 ] || ! grep -q "walls this scene builds differ from those the periodic checkpoint" "$tmp/edit/out"; then
+  echo "FAIL an edited STL file was not refused by --restart (exit $rc):"; cat "$tmp/edit/out"; exit 1
+fi
+echo "ok   an edited STL file is refused by --restart"
+cp "$tmp/edit/deflector.orig" "$tmp/edit/deflector.stl"
+rc=0; timeout 3 "$bin/run-stage" "${args[@]}" > "$tmp/edit/out" 2>&1 || rc=$?
+# (it resumes and runs on until the timeout stops it: 124, not the refusal's 3)
+if [ $rc -ne 124 ]; then echo "FAIL the restored file was not accepted (exit $rc):"; cat "$tmp/edit/out"; exit 1; fi
+echo "ok   the restored STL file is accepted"

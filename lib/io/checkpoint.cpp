@@ -291,6 +291,8 @@ class Reader {
     return out;
   }
 
+  bool has(const char* name) { return group_path_exists(name); }
+
  private:
   bool group_path_exists(const char* name) {
     // H5Lexists fails on a missing intermediate group; check each component.
@@ -331,6 +333,7 @@ void write_all(Writer& w, const Simulation& sim, const CheckpointMeta& meta) {
   w.group("/scene");
   w.strings("/scene/text", {meta.scene_text});
   w.strings("/scene/path", {meta.scene_path});
+  w.strings("/scene/walls", {meta.scene_walls});
 
   w.group("/state");
   w.scalar("/state/time", sim.time, "s");
@@ -486,6 +489,7 @@ void read_checkpoint(const std::string& path, Simulation& sim, CheckpointMeta& m
   meta.writer_version = r.string_attribute("writer_version");
   meta.scene_text = r.strings("/scene/text", 1)[0];
   meta.scene_path = r.strings("/scene/path", 1)[0];
+  meta.scene_walls = r.has("/scene/walls") ? r.strings("/scene/walls", 1)[0] : "";  // optional: added within schema 2
 
   sim.time = r.scalar("/state/time");
   sim.step = r.scalar_int("/state/step");

@@ -26,6 +26,7 @@ struct CheckpointMeta {
   std::string writer;          // tool that wrote the file
   std::string writer_version;  // filled on read; kVersion on write
   std::string scene_path, scene_text;
+  std::string scene_walls;  // Scene::walls_fingerprint(); empty when read from a file written before it existed
   RunInfo run;
 };
 

@@ -49,6 +49,7 @@ CheckpointMeta meta_for(const char* tool, const Scene& scene) {
   m.writer = tool;
   m.scene_path = scene.path;
   m.scene_text = scene.text;
+  m.scene_walls = scene.walls_fingerprint();
   m.run.stage = tool;
   return m;
 }

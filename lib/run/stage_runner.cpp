@@ -89,6 +89,10 @@ void run_stage(const StageOptions& o) {
     if (meta.scene_text != scene.text)
       throw InputError(o.scene + ": the scene file differs from the one the periodic checkpoint " + restart_file +
                        " was written with; an exact restart needs the same scene (delete the periodic checkpoint to start over)");
+    if (!meta.scene_walls.empty() && meta.scene_walls != scene.walls_fingerprint())
+      throw InputError(o.scene + ": the walls this scene builds differ from those the periodic checkpoint " + restart_file +
+                       " was written with (was a wall's STL file edited?); an exact restart needs the same walls (delete the "
+                       "periodic checkpoint to start over)");
     if (meta.run.stage != stage->name)
       throw InputError(restart_file + ": the periodic checkpoint belongs to stage \"" + meta.run.stage + "\", not \"" + stage->name + "\"");
     // The same scene text gives the same contact constants, [[pair]] entries included.
@@ -106,6 +110,7 @@ void run_stage(const StageOptions& o) {
   meta.writer = "run-stage";
   meta.scene_path = scene.path;
   meta.scene_text = scene.text;
+  meta.scene_walls = scene.walls_fingerprint();
   RunInfo& run = meta.run;
 
   std::vector<ServoGroup> servos = stage_servos(sim, scene, *stage);

@@ -1,11 +1,30 @@
 #include "scene/scene.hpp"
 
+#include <cstdint>
+#include <cstdio>
+
 namespace dem {
 
 const StageSpec* Scene::stage(const std::string& name) const {
   for (const StageSpec& s : stages)
     if (s.name == name) return &s;
   return nullptr;
+}
+
+std::string Scene::walls_fingerprint() const {
+  std::uint64_t h = 14695981039346656037ull;  // FNV-1a, 64 bits
+  auto feed = [&h](const void* data, std::size_t n) {
+    const unsigned char* b = static_cast<const unsigned char*>(data);
+    for (std::size_t k = 0; k < n; ++k) h = (h ^ b[k]) * 1099511628211ull;
+  };
+  for (const WallSpec& w : walls) {
+    feed(w.name.data(), w.name.size() + 1);
+    feed(&w.material, sizeof w.material);
+    for (const Vec3& v : w.vertices) feed(v.data(), 3 * sizeof(double));
+  }
+  char out[64];
+  std::snprintf(out, sizeof out, "fnv1a64=%016llx elements=%zu", static_cast<unsigned long long>(h), walls.size());
+  return out;
 }
 
 bool wall_matches(const std::string& wall_name, const std::string& pattern) {

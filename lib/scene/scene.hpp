@@ -129,6 +129,10 @@ struct Scene {
   std::vector<StageSpec> stages;
 
   const StageSpec* stage(const std::string& name) const;
+  // A fingerprint of the walls as built (names, materials, every vertex to the bit): the walls
+  // come partly from files the scene names (STL), which the scene text does not hold, so a
+  // restart compares this too. "fnv1a64=<16 hex digits> elements=<n>".
+  std::string walls_fingerprint() const;
 };
 
 // Does a wall name match a name or a group prefix given in the scene?
