@@ -27,6 +27,14 @@ def main():
     for s, v in sorted(segs.items()):
         print(f"soak: segment {s}: {v[0][0]}-{v[-1][0]} s, resident memory {min(x[1] for x in v) / 1024:.0f}-"
               f"{max(x[1] for x in v) / 1024:.0f} MiB")
+    # Memory against the state: a leak grows with the process's age, a forming bed with the step.
+    windows = {}
+    for r in rows:
+        windows.setdefault((int(r["segment"]), int(r["step"])), []).append((int(r["seconds"]), int(r["rss_kb"])))
+    for (s, step), v in sorted(windows.items()):
+        if step >= 0 and len(v) >= 3:
+            print(f"soak: segment {s}, newest checkpoint at step {step}: {v[0][0]}-{v[-1][0]} s, "
+                  f"{v[0][1] / 1024:.1f} -> {v[-1][1] / 1024:.1f} MiB")
     for s, first, last, g in growth:
         print(f"soak: segment {s} after its first minute: {first / 1024:.1f} -> {last / 1024:.1f} MiB ({100 * g:+.2f} %)")
     if not growth:
