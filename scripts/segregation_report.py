@@ -78,6 +78,21 @@ def arrival_cycle(mid, zc, big_r, surface, small_d):
     return float(mid[hit[0]]), float(at[hit[0]:].mean())
 
 
+def plot_height(ax, cycles, z, mid, zc, arrival, frequency, title, marks):
+    """The intruder's centre against cycles (raw and per-cycle mean), horizontal `marks`
+    ((height, linestyle, label), ...) and the arrival cycle if there is one."""
+    ax.plot(cycles, z * 1e3, lw=0.4, color="0.6", label="intruder centre")
+    ax.plot(mid, zc * 1e3, lw=1.6, color="C0", label="per-cycle mean")
+    for height, ls, label in marks:
+        ax.axhline(height * 1e3, color="C3", ls=ls, lw=1, label=label)
+    if np.isfinite(arrival):
+        ax.axvline(arrival, color="C2", lw=1, label=f"reaches the surface: {arrival:.0f} cycles")
+    ax.set_xlabel(f"cycles at {frequency:g} Hz")
+    ax.set_ylabel("height [mm]")
+    ax.set_title(title, fontsize=9)
+    ax.legend(fontsize=7, loc="lower right")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--start", required=True, help="checkpoint at the start of vibration")
@@ -168,17 +183,9 @@ def main():
 
     fig, axes = plt.subplots(1, 3 if a.rise_track else 2, figsize=(15 if a.rise_track else 10, 4.2), dpi=120)
     ax1, ax2 = axes[0], axes[1]
-    ax1.plot(cycles, z * 1e3, lw=0.4, color="0.6", label="intruder centre")
-    ax1.plot(mid, zc * 1e3, lw=1.6, color="C0", label="per-cycle mean")
-    ax1.axhline((h_end - big_r) * 1e3, color="C3", ls="--", lw=1, label="centre at the surface (end)")
-    ax1.axhline((h_start - big_r) * 1e3, color="C3", ls=":", lw=1, label="centre at the surface (start)")
     ax1.axvline(span_cycles, color="0.3", lw=0.8, ls="-.", label="thesis span (4.7 s)")
-    if np.isfinite(arrival):
-        ax1.axvline(arrival, color="C2", lw=1, label=f"reaches the surface: {arrival:.0f} cycles")
-    ax1.set_xlabel(f"cycles at {a.frequency:g} Hz")
-    ax1.set_ylabel("height [mm]")
-    ax1.set_title("Large sphere (24 mm) in 8 mm spheres, 3 g", fontsize=9)
-    ax1.legend(fontsize=7, loc="lower right")
+    plot_height(ax1, cycles, z, mid, zc, arrival, a.frequency, "Large sphere (24 mm) in 8 mm spheres, 3 g",
+                [(h_end - big_r, "--", "centre at the surface (end)"), (h_start - big_r, ":", "centre at the surface (start)")])
     p = np.array(profile)
     ax2.plot(p[:, 0] / small_d, p[:, 2] * 1e3, marker="o", label="mean")
     ax2.plot(p[:, 0] / small_d, p[:, 3] * 1e3, marker="s", ls="--", label="median")
@@ -188,17 +195,8 @@ def main():
     ax2.set_title("Convection: down along the walls, up in the centre", fontsize=9)
     ax2.legend(fontsize=7)
     if a.rise_track:
-        ax3 = axes[2]
-        ax3.plot((rt - t0) * a.frequency, rz * 1e3, lw=0.4, color="0.6", label="intruder centre")
-        ax3.plot(rmid, rzc * 1e3, lw=1.6, color="C0", label="per-cycle mean")
-        ax3.axhline((h_start - big_r - small_d) * 1e3, color="C3", ls=":", lw=1,
-                    label="top within one small diameter of the surface at rest")
-        if np.isfinite(r_arrival):
-            ax3.axvline(r_arrival, color="C2", lw=1, label=f"reaches the surface: {r_arrival:.0f} cycles")
-        ax3.set_xlabel(f"cycles at {a.frequency:g} Hz")
-        ax3.set_ylabel("height [mm]")
-        ax3.set_title(f"The same bed at {a.rise_gamma:g} g", fontsize=9)
-        ax3.legend(fontsize=7, loc="lower right")
+        plot_height(axes[2], (rt - t0) * a.frequency, rz, rmid, rzc, r_arrival, a.frequency, f"The same bed at {a.rise_gamma:g} g",
+                    [(h_start - big_r - small_d, ":", "top within one small diameter of the surface at rest")])
     save_atomically(fig, a.png)
     plt.close(fig)
 

@@ -82,6 +82,7 @@ void run_stage(const StageOptions& o) {
     throw InputError(o.scene + ": no [[stage]] named \"" + o.stage + "\" (defined: " + (list.empty() ? "none" : list) + ")");
   }
   const std::string restart_file = restart_path(o.out);
+  const std::string walls_fingerprint = scene.walls_fingerprint();
   Simulation sim;
   CheckpointMeta meta;
   if (o.restart && std::filesystem::exists(restart_file)) {
@@ -89,7 +90,7 @@ void run_stage(const StageOptions& o) {
     if (meta.scene_text != scene.text)
       throw InputError(o.scene + ": the scene file differs from the one the periodic checkpoint " + restart_file +
                        " was written with; an exact restart needs the same scene (delete the periodic checkpoint to start over)");
-    if (!meta.scene_walls.empty() && meta.scene_walls != scene.walls_fingerprint())
+    if (!meta.scene_walls.empty() && meta.scene_walls != walls_fingerprint)
       throw InputError(o.scene + ": the walls this scene builds differ from those the periodic checkpoint " + restart_file +
                        " was written with (was a wall's STL file edited?); an exact restart needs the same walls (delete the "
                        "periodic checkpoint to start over)");
@@ -110,7 +111,7 @@ void run_stage(const StageOptions& o) {
   meta.writer = "run-stage";
   meta.scene_path = scene.path;
   meta.scene_text = scene.text;
-  meta.scene_walls = scene.walls_fingerprint();
+  meta.scene_walls = walls_fingerprint;
   RunInfo& run = meta.run;
 
   std::vector<ServoGroup> servos = stage_servos(sim, scene, *stage);

@@ -8,7 +8,8 @@ namespace dem {
 MechanicalEnergy mechanical_energy(const Particles& p, const Vec3& gravity) {
   MechanicalEnergy e;
   for (std::size_t k = 0; k < p.size(); ++k) {
-    e.kinetic += 0.5 * p.mass[k] * p.v[k].squaredNorm() + 0.5 * p.inertia(k) * p.w[k].squaredNorm();
+    double rotational;
+    e.kinetic += kinetic_energy_of(p, k, rotational);
     e.potential -= p.mass[k] * gravity.dot(p.x[k]);
   }
   return e;

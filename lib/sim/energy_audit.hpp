@@ -27,6 +27,11 @@ struct MechanicalEnergy {
   double total() const { return kinetic + potential; }
 };
 MechanicalEnergy mechanical_energy(const Particles& p, const Vec3& gravity);
+// Kinetic energy of particle k, translational + rotational ½ I ω² (the second part in `rotational`).
+inline double kinetic_energy_of(const Particles& p, std::size_t k, double& rotational) {
+  rotational = 0.5 * p.inertia(k) * p.w[k].squaredNorm();
+  return 0.5 * p.mass[k] * p.v[k].squaredNorm() + rotational;
+}
 
 // An upper bound on the elastic energy stored in the active contacts [J]: ½ kn u² in compression
 // (every law is linear there), F s for a bonded pair held in tension s (the attraction never

@@ -74,11 +74,7 @@ double wall_forces(const ForceLoopInput& in, ContactList& wc) {
       const int first = in.wall_runs[r], n = in.wall_runs[r + 1] - first;
       const int i = wc.slot_i[first];
       if (static_cast<int>(to_wall.size()) < n) to_wall.resize(n), touching.resize(n), take.resize(n), order.resize(n);
-      for (int e = 0; e < n; ++e) {
-        const long k = first + e;
-        touching[e] = wall_gap2(p, in.geometry[wc.slot_j[k]], i, to_wall[e]) < p.radius[i] * p.radius[i];
-      }
-      select_wall_contacts(to_wall.data(), touching.data(), n, p.radius[i], take.data(), order.data());
+      counted_wall_touches(p, in.geometry, wc, first, n, to_wall.data(), touching.data(), take.data(), order.data());
       for (int e = 0; e < n; ++e) take[e] = take[e] || wc.bonded[first + e];  // a bond holds regardless
       // A new contact takes over the spring of a contact of this particle lost this step whose
       // direction is close (within 60 degrees): rolling or sliding from one element onto its
@@ -132,6 +128,14 @@ double all_forces(const ForceLoopInput& in, ContactList& pairs, ContactList& wal
 }
 
 }  // namespace
+
+void counted_wall_touches(const Particles& p, const std::vector<WallGeometry>& geometry, const ContactList& wc, int first,
+                          int n, Vec3* to_wall, std::uint8_t* touching, std::uint8_t* take, int* order) {
+  const int i = wc.slot_i[first];
+  for (int e = 0; e < n; ++e)
+    touching[e] = wall_gap2(p, geometry[wc.slot_j[first + e]], i, to_wall[e]) < p.radius[i] * p.radius[i];
+  select_wall_contacts(to_wall, touching, n, p.radius[i], take, order);
+}
 
 void select_wall_contacts(const Vec3* to_wall, const std::uint8_t* touching, int n, double radius, std::uint8_t* take,
                           int* order) {

@@ -96,11 +96,8 @@ std::size_t Simulation::bond_present_contacts(bool walls_too) {
     std::vector<int> order;
     for (std::size_t r = 0; r + 1 < wall_runs_.size(); ++r) {
       const int first = wall_runs_[r], count = wall_runs_[r + 1] - first;
-      const int i = walls_.slot_i[first];
       to_wall.resize(count), touching.resize(count), take.resize(count), order.resize(count);
-      for (int e = 0; e < count; ++e)
-        touching[e] = wall_gap2(p, wall_geometry_[walls_.slot_j[first + e]], i, to_wall[e]) < p.radius[i] * p.radius[i];
-      select_wall_contacts(to_wall.data(), touching.data(), count, p.radius[i], take.data(), order.data());
+      counted_wall_touches(p, wall_geometry_, walls_, first, count, to_wall.data(), touching.data(), take.data(), order.data());
       for (int e = 0; e < count; ++e)
         if (take[e] || walls_.bonded[first + e]) walls_.bonded[first + e] = walls_.active[first + e] = 1, ++n;
     }
@@ -246,8 +243,8 @@ void Simulation::report_energy_gain() const {
   std::size_t top = 0;  // the particle with the most kinetic energy
   double top_e = -1, top_rot = 0;
   for (std::size_t k = 0; k < p.size(); ++k) {
-    const double rot = 0.5 * p.inertia(k) * p.w[k].squaredNorm();
-    const double e = 0.5 * p.mass[k] * p.v[k].squaredNorm() + rot;
+    double rot;
+    const double e = kinetic_energy_of(p, k, rot);
     if (e > top_e) top = k, top_e = e, top_rot = rot;
   }
   std::ostringstream m;
