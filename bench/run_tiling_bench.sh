@@ -2,7 +2,9 @@
 # Generation by tiling against settling the whole sample at once (SPEC §9, thesis §3.3: "copies are
 # cheaper"); writes bench/results/tiling.md.
 # Usage: bash bench/run_tiling_bench.sh [THREADS] [SIZES]   (from the repository root)
-#   default: 1 thread, SIZES="100000 1000000" (about 25 minutes on one core of this VM)
+#   default: 1 thread, SIZES="100000 1000000" (about 1.5 hours on one core of this VM); needs
+#   /usr/bin/time (Debian package `time`) for the peak memory. Rows of other sizes already in
+#   tiling.md are kept, and so is the text under its table.
 # For each size N: (a) gen-primary places N spheres at random in the whole box and settles them;
 # (b) gen-primary settles N/T spheres in one tile's footprint and copy-settle tiles it
 # sqrt(T) x sqrt(T) and settles again (T = 16 for 1e5, 100 for 1e6). Glass spheres of 18-22 mm
@@ -78,7 +80,7 @@ run() {
   local label=$1; shift
   local t0 t1
   t0=$(date +%s.%N)
-  "$@" --threads "$threads" --quiet > "$work/$label.log" 2>&1
+  /usr/bin/time -f %M -o "$work/$label.rss" "$@" --threads "$threads" --quiet > "$work/$label.log" 2>&1
   t1=$(date +%s.%N)
   echo "$(echo "$t1 - $t0" | bc)" > "$work/$label.time"
 }
@@ -98,22 +100,29 @@ for n in $sizes; do
   run "copy_$n" build/tools/copy-settle --scene "$work/copy_$n.toml" --in "$work/primary_$n.h5" --out "$work/copy_$n.h5"
   summary() { sed -n 's/.*: \([0-9]*\) particles, \([0-9]*\) steps .*settled: \([a-z]*\).*porosity \([0-9.]*\), coordination \([0-9.]*\).*/\1 | \2 | \3 | \4 | \5/p' "$work/$1.log"; }
   tw=$(cat "$work/whole_$n.time") tp=$(cat "$work/primary_$n.time") tc=$(cat "$work/copy_$n.time")
-  rows+=("| $n | whole box ${full} m square | $(summary whole_$n) | $(printf %.1f "$tw") |")
-  rows+=("| $n | primary, one tile ${side} m square | $(summary primary_$n) | $(printf %.1f "$tp") |")
-  rows+=("| $n | copy-settle ${tiles} x ${tiles} | $(summary copy_$n) | $(printf %.1f "$tc") |")
-  rows+=("| $n | **tiling total / whole** | | | | | | $(printf %.1f "$(echo "$tp + $tc" | bc)") s / $(printf %.1f "$tw") s = **$(python3 -c "print(f'{($tp + $tc) / $tw:.2f}')")** |")
+  when="$threads, $(date -u +%Y-%m-%d)"
+  mib() { echo $(( $(cat "$work/$1.rss") / 1024 )); }
+  rows+=("| $n | whole box ${full} m square | $(summary whole_$n) | $(printf %.1f "$tw") | $when | $(mib whole_$n) |")
+  rows+=("| $n | primary, one tile ${side} m square | $(summary primary_$n) | $(printf %.1f "$tp") | $when | $(mib primary_$n) |")
+  rows+=("| $n | copy-settle ${tiles} x ${tiles} | $(summary copy_$n) | $(printf %.1f "$tc") | $when | $(mib copy_$n) |")
+  rows+=("| $n | **tiling total / whole** | | | | | | $(printf %.1f "$(echo "$tp + $tc" | bc)") s / $(printf %.1f "$tw") s = **$(python3 -c "print(f'{($tp + $tc) / $tw:.2f}')")** | $when | |")
 done
+# Rows of sizes not measured now, and the notes under the table, are kept from the previous file.
+kept_rows=$(awk -F'|' -v sizes=" $sizes " 'NR > 1 && /^\| [0-9]/ && index(sizes, " " ($2 + 0) " ") == 0' "$out" 2> /dev/null || true)
+notes=$(awk 'table && !/^\|/ {rest = 1} rest {print} /^\|---/ {table = 1}' "$out" 2> /dev/null || true)
 {
   echo "# Generation: tiling against settling the whole sample"
   echo
-  echo "Measured $(date -u +%Y-%m-%d) on $(nproc) cores ($(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')),"
-  echo "$threads thread(s), dem $(build/tools/run-stage --version | awk '{print $NF}'). Reproduce: \`bash bench/run_tiling_bench.sh $threads\`."
+  echo "Machine: $(nproc) cores ($(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')), dem $(build/tools/run-stage --version | awk '{print $NF}')."
+  echo "Reproduce: \`bash bench/run_tiling_bench.sh THREADS N\` (the row's threads and N)."
   echo "Scene and method: the comment at the top of bench/run_tiling_bench.sh. Porosity is over the"
-  echo "container up to the highest sphere top (the rough surface counts as void), coordination per sphere."
+  echo "container up to the highest sphere top (the rough surface counts as void), coordination per sphere;"
+  echo "peak RSS of the tool's process."
   echo
-  echo "| N | step | particles | steps | settled | porosity | coordination | wall time [s] |"
-  echo "|---|---|---|---|---|---|---|---|"
-  printf '%s\n' "${rows[@]}"
+  echo "| N | step | particles | steps | settled | porosity | coordination | wall time [s] | threads, date | peak RSS [MiB] |"
+  echo "|---|---|---|---|---|---|---|---|---|---|"
+  { [ -n "$kept_rows" ] && echo "$kept_rows"; printf '%s\n' "${rows[@]}"; } | sort -t'|' -k2,2n -s
+  [ -n "$notes" ] && echo "$notes"
 } > "$out.tmp"
 mv "$out.tmp" "$out"
 cat "$out"

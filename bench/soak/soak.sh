@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Soak test (issue 10, README "Reliability"; not in CI): run-stage on a 100,000-sphere scene for
+# Soak test (issue 10, README "Reliability"; not in CI): gen-primary pours and settles a
+# 100,000-sphere bed (before the clock starts), then run-stage shakes it for
 # MINUTES (default 60) with a periodic checkpoint every CHECKPOINT steps, killed with SIGKILL at
 # random moments 8-20 minutes apart and restarted with --restart each time. Samples the resident
 # memory every 5 s and checks at the end that
@@ -9,7 +10,7 @@
 #   - the resident memory does not grow: within each run segment that starts after the first third
 #     of the soak (while the bed forms, contacts and lists grow with it), after the segment's
 #     first minute, the last sample is within 5 % of the first (soak_report.py).
-# Writes OUT/memory.csv (seconds, segment, pid, step, rss_kb), OUT/restarts.csv and OUT/soak.txt.
+# Writes OUT/gen.log (the settled bed), OUT/memory.csv (seconds, segment, pid, step, rss_kb), OUT/restarts.csv and OUT/soak.txt.
 #   bench/soak/soak.sh [MINUTES] [THREADS] [OUT]      (build first: make -f Makefile.cases build)
 # A short smoke run on a smaller scene: SOAK_SCENE=scene.toml SOAK_LIFE_MIN=30 SOAK_LIFE_MAX=60 CHECKPOINT=2000
 set -u
@@ -57,5 +58,6 @@ if ! "$bin/post-macro" --reference "$out/poured.h5" --in "$out/shake.restart.h5"
 fi
 particles=$(/usr/bin/python3 -c "import h5py,sys,numpy as np; f=h5py.File(sys.argv[1],'r'); x=f['particles/position'][()]; print(len(x) if np.isfinite(x).all() else -1)" "$out/shake.restart.h5")
 [ "$particles" = "$count" ] || { echo "FAIL the newest checkpoint holds $particles finite particles, not $count"; fail=1; }
-/usr/bin/python3 "$root/bench/soak/soak_report.py" "$out" "$fail" "$minutes" "$final" "$particles" | tee "$out/soak.txt"
+{ echo "soak: start: $(grep -m1 'particles' "$out/gen.log")"
+  /usr/bin/python3 "$root/bench/soak/soak_report.py" "$out" "$fail" "$minutes" "$final" "$particles"; } | tee "$out/soak.txt"
 exit "${PIPESTATUS[0]}"
