@@ -65,6 +65,8 @@ def main(path, expect_writer):
         assert f["contacts/pair_bonded"].shape == (f["contacts/pair_ids"].shape[0],)
         assert f["contacts/wall_bonded"].shape == (f["contacts/wall_ids"].shape[0],)
         assert f["contacts/pair_bonded"].dtype == np.uint8
+        for name, units in (("run/frame_times", b"s"), ("run/servo_integral", b"m/s")):
+            assert f[name].dtype.kind == "f" and f[name].ndim == 1 and f[name].attrs["units"] == units, name
 
         # Contents consistent with the scene the file carries.
         scene = f["scene/text"][0].decode()

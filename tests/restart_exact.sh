@@ -46,6 +46,20 @@ cmp "$tmp/full.csv" "$tmp/killed.csv" || { echo "wall force CSV differs after re
 cmp "$tmp/full_track.csv" "$tmp/killed_track.csv" || { echo "particle track CSV differs after restarts"; exit 1; }
 [ "$(wc -l < "$tmp/full_track.csv")" -gt 10 ] || { echo "particle track CSV too short"; exit 1; }
 
+# 1b. The lid servo's integral action is carried over: killed (whatever the machine's speed) once
+#     the periodic checkpoint holds the lid pressing with its integral under way, then resumed.
+"$bin/run-stage" --scene "$scene" --stage long --in "$tmp/start.h5" --out "$tmp/pi.h5" --checkpoint-every 300 --quiet &
+pid=$!
+under_way() {
+  "$py" -c "import h5py, sys; f = h5py.File(sys.argv[1], 'r'); sys.exit(0 if f['run/servo_integral'][0] != 0 else 1)" "$1" 2> /dev/null
+}
+until [ -e "$tmp/pi.restart.h5" ] && under_way "$tmp/pi.restart.h5"; do kill -0 $pid 2> /dev/null || break; sleep 0.2; done
+kill -9 $pid 2> /dev/null; wait $pid 2> /dev/null
+[ -e "$tmp/pi.h5" ] && { echo "the stage ended before the servo's integral was under way in a checkpoint"; exit 1; }
+"$bin/run-stage" --scene "$scene" --stage long --in "$tmp/start.h5" --out "$tmp/pi.h5" --checkpoint-every 300 --restart --quiet || exit 1
+"$py" "$src/compare_checkpoints.py" "$tmp/full.h5" "$tmp/pi.h5" > /dev/null || { echo "resumed with the servo's integral under way: differs"; exit 1; }
+echo "resumed exactly with the servo's integral under way"
+
 # 2. A changed scene refuses to resume (exactness would be lost).
 "$bin/run-stage" --scene "$scene" --stage long --in "$tmp/start.h5" --out "$tmp/x.h5" --checkpoint-every 500 --quiet &
 pid=$!; sleep 0.6; kill -9 $pid; wait $pid 2>/dev/null

@@ -57,7 +57,7 @@ class CheckpointTest : public ::testing::Test {
     meta_.writer = "test";
     meta_.scene_text = "# scene text\n";
     meta_.scene_path = "x.toml";
-    meta_.run = {"shake", 10, 20, 0.5, {0.1, 0.2}};
+    meta_.run = {"shake", 10, 20, 0.5, {0.1, 0.2}, {0.25, -1e-3}};
     path_ = (dir_ / "a.h5").string();
     write_checkpoint(path_, sim_, meta_);
   }
@@ -121,6 +121,7 @@ TEST_F(CheckpointTest, RoundTripIsExact) {
   EXPECT_EQ(s.materials.materials()[1].kt, 1e5);
   EXPECT_EQ(m.run.stage, "shake");
   EXPECT_EQ(m.run.frame_times, meta_.run.frame_times);
+  EXPECT_EQ(m.run.servo_integral, meta_.run.servo_integral);
   EXPECT_EQ(m.scene_text, meta_.scene_text);
 
   // Continuing from the checkpoint gives the same bits as continuing in memory.

@@ -196,6 +196,8 @@ std::vector<BadCase> bad_cases() {
        {"stage[0].servo[0].target_stress = -1000", "(0, inf) Pa"}},
       {"servo gain above one", kValid + "\n[[stage.motion]]\nwall = \"box.zmax\"\ntype = \"fixed\"\n[[stage.servo]]\nwall = \"box.zmax\"\ntarget_stress = 1000.0\nmax_speed = 0.1\ngain = 2.0\n",
        {"stage[0].servo[0].gain = 2", "(0, 1]"}},
+      {"servo integral_time negative", kValid + "\n[[stage.motion]]\nwall = \"box.zmax\"\ntype = \"fixed\"\n[[stage.servo]]\nwall = \"box.zmax\"\ntarget_stress = 1000.0\nmax_speed = 0.1\nintegral_time = -0.01\n",
+       {"stage[0].servo[0].integral_time = -0.01", "[0,"}},
       {"servo of an unknown wall", kValid + "\n[[stage.servo]]\nwall = \"lid\"\ntarget_stress = 1000.0\nmax_speed = 0.1\n",
        {"stage[0].servo[0].wall = \"lid\"", "no wall or wall group"}},
       // Cutting regions (stage action remove, [[generation.cut]]).

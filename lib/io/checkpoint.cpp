@@ -349,6 +349,7 @@ void write_all(Writer& w, const Simulation& sim, const CheckpointMeta& meta) {
   w.scalar("/run/stage_steps", meta.run.stage_steps);
   w.scalar("/run/stage_start_time", meta.run.stage_start_time, "s");
   w.doubles("/run/frame_times", meta.run.frame_times, "s");
+  w.doubles("/run/servo_integral", meta.run.servo_integral, "m/s");
 
   const Particles& p = sim.particles;
   w.group("/particles");
@@ -503,6 +504,8 @@ void read_checkpoint(const std::string& path, Simulation& sim, CheckpointMeta& m
   meta.run.stage_steps = r.scalar_int("/run/stage_steps");
   meta.run.stage_start_time = r.scalar("/run/stage_start_time");
   meta.run.frame_times = r.doubles("/run/frame_times");
+  // Optional: added within schema 2; a file without it held no integral action (all zero).
+  if (r.has("/run/servo_integral")) meta.run.servo_integral = r.doubles("/run/servo_integral");
 
   Particles& p = sim.particles;
   p.id = r.int64s("/particles/id");

@@ -20,6 +20,7 @@ struct RunInfo {
   std::int64_t stage_steps = 0;      // steps the stage takes in all
   double stage_start_time = 0;       // [s]
   std::vector<double> frame_times;   // times of the VTK frames written so far in this stage [s]
+  std::vector<double> servo_integral;  // per [[stage.servo]]: its integral action [m/s] (ServoGroup)
 };
 
 struct CheckpointMeta {

@@ -858,6 +858,7 @@ void read_stages(TableReader& top, Scene& sc) {
       sv.target_stress = sr.number("target_stress", 0, kInf, "Pa", true);
       sv.max_speed = sr.number("max_speed", 0, kInf, "m/s", true);
       sv.gain = sr.number_or("gain", sv.gain, 0, 1, "(dimensionless)", true);
+      sv.integral_time = sr.number_or("integral_time", sv.integral_time, 0, kInf, "s");
       if (sr.has("direction")) sv.direction = unit_direction(sr, "direction");
       sr.finish();
       s.servos.push_back(sv);

@@ -66,6 +66,7 @@ std::vector<ServoGroup> stage_servos(const Simulation& sim, const Scene& scene, 
     g.target = s.target_stress;
     g.max_speed = s.max_speed;
     g.gain = s.gain;
+    g.integral_time = s.integral_time;
     groups.push_back(g);
   }
   return groups;
@@ -115,6 +116,16 @@ void run_stage(const StageOptions& o) {
   RunInfo& run = meta.run;
 
   std::vector<ServoGroup> servos = stage_servos(sim, scene, *stage);
+  if (!run.servo_integral.empty()) {  // resumed: the integral actions where the checkpoint left them
+    if (run.servo_integral.size() != servos.size())
+      throw IoError(restart_file + ": /run/servo_integral holds " + std::to_string(run.servo_integral.size()) +
+                    " values, the stage has " + std::to_string(servos.size()) + " servos");
+    for (std::size_t k = 0; k < servos.size(); ++k) servos[k].integral = run.servo_integral[k];
+  }
+  auto keep_integrals = [&]() {
+    run.servo_integral.resize(servos.size());
+    for (std::size_t k = 0; k < servos.size(); ++k) run.servo_integral[k] = servos[k].integral;
+  };
   double k_max = 0, c_max = 0;
   servo_constants(sim, k_max, c_max);
   const std::int64_t resume_step = sim.step > run.stage_start_step ? sim.step : -1;
@@ -149,7 +160,7 @@ void run_stage(const StageOptions& o) {
     wall_log.record(sim, done, sim.step == end);
     track.record(sim, done, sim.step == end);
     progress.update(done, sim.time);
-    if (o.checkpoint_every > 0 && done % o.checkpoint_every == 0 && sim.step < end) write_checkpoint(restart_file, sim, meta);
+    if (o.checkpoint_every > 0 && done % o.checkpoint_every == 0 && sim.step < end) keep_integrals(), write_checkpoint(restart_file, sim, meta);
   }
   progress.finish(sim.step - run.stage_start_step, sim.time);
   if (!servos.empty()) {
@@ -165,6 +176,7 @@ void run_stage(const StageOptions& o) {
   }
   wall_log.finish();  // before the checkpoint: a finished checkpoint means finished outputs (make)
   track.finish();
+  keep_integrals();
   write_checkpoint(o.out, sim, meta);
   std::remove(restart_file.c_str());
 }

@@ -103,6 +103,7 @@ struct ServoSpec {
   double target_stress = 0;        // [Pa], compression positive
   double max_speed = 0;            // [m/s]
   double gain = 0.2;               // fraction of the force error corrected per step
+  double integral_time = 0;        // [s] T_i of the integral action; 0 = proportional only
   std::optional<Vec3> direction;   // direction of compression; default: the group's normal towards the particles
 };
 

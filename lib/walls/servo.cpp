@@ -15,12 +15,16 @@ double ServoGroup::stress(const std::vector<WallLoad>& loads) const {
   return f / area;
 }
 
-double ServoGroup::speed(const std::vector<WallLoad>& loads, double dt, double k_max, double c_max) const {
+double ServoGroup::speed(const std::vector<WallLoad>& loads, double dt, double k_max, double c_max) {
   int n = 0;
   for (std::size_t e : elements) n += loads[e].contacts;
   if (n == 0) return max_speed;
   const double error = (target - stress(loads)) * area;  // [N]
-  return std::clamp(gain * error / (n * (k_max * dt + c_max)), -max_speed, max_speed);
+  const double u = error / (n * (k_max * dt + c_max));  // [m/s]
+  const double v = gain * u + integral;
+  const bool held = std::abs(v) > max_speed && (u > 0) == (v > 0);  // the limit holds it that way
+  if (integral_time > 0 && !held) integral = std::clamp(integral + gain * u * dt / integral_time, -max_speed, max_speed);
+  return std::clamp(v, -max_speed, max_speed);
 }
 
 Vec3 particle_centroid(const Simulation& sim) {
@@ -69,7 +73,7 @@ void update_areas(const Simulation& sim, std::vector<ServoGroup>& groups) {
 void drive_servos(Simulation& sim, std::vector<ServoGroup>& groups, double k_max, double c_max) {
   update_areas(sim, groups);
   const std::vector<WallLoad> loads = sim.wall_loads();
-  for (const ServoGroup& g : groups) {
+  for (ServoGroup& g : groups) {
     WallMotion m;
     m.velocity = g.speed(loads, sim.dt, k_max, c_max) * g.inward;
     for (std::size_t e : g.elements) sim.walls[e].start_motion(m, sim.time);

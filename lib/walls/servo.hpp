@@ -23,15 +23,24 @@ struct ServoGroup {
   double target = 0;                  // target normal stress [Pa], compression positive
   double max_speed = 0;               // [m/s]
   double gain = 0.2;                  // fraction of the force error corrected per step
+  double integral_time = 0;           // T_i of the integral action [s]; 0 = proportional only
+  double integral = 0;                // the integral action's velocity now [m/s] (a periodic
+                                      // checkpoint holds it: RunInfo::servo_integral)
 
   // Mean normal stress the particles exert on the group: -sum F . inward / area [Pa]
   // (`loads`: Simulation::wall_loads()).
   double stress(const std::vector<WallLoad>& loads) const;
-  // Velocity along `inward` for the next step. A velocity change dv changes the group's force at
-  // once by C dv (dashpots) and by K v dt per step (springs), with K = n k_max and C = n c_max
-  // over its n contacts; `gain` = 0.2 corrects about 20 % of the force error per step without
-  // chattering. A group that touches nothing approaches at full speed.
-  double speed(const std::vector<WallLoad>& loads, double dt, double k_max, double c_max) const;
+  // Velocity along `inward` for the next step, and the integral action advanced by dt.
+  // Proportional part: a velocity change dv changes the group's force at once by C dv (dashpots)
+  // and by K v dt per step (springs), with K = n k_max and C = n c_max over its n contacts; with
+  // u = force error / (K dt + C), the velocity that would close the whole error in one step,
+  // `gain` u corrects about `gain` of the error per step (0.2 without chattering). Integral part
+  // (PI, integral_time > 0): integral += gain u dt / T_i, so that a steady change of the sample
+  // (a side wall pushing in, a bed compacting), which leaves the proportional servo an error
+  // proportional to its rate / gain, is followed without one. The integral only grows while the
+  // speed limit does not hold the output in the same direction, and stays within ±max_speed
+  // (anti-windup). A group that touches nothing approaches at full speed, its integral unchanged.
+  double speed(const std::vector<WallLoad>& loads, double dt, double k_max, double c_max);
 };
 
 // The walls whose names match `pattern` (a wall or group name), at time t, with their total area
