@@ -107,7 +107,7 @@ void run_stage(const StageOptions& o) {
     apply_actions(sim, *stage);
     sim.dt = choose_time_step(sim, scene.simulation);
     start_motions(sim, *stage);
-    meta.run = RunInfo{stage->name, sim.step, static_cast<std::int64_t>(std::ceil(stage->duration / sim.dt - 1e-9)), sim.time, {}};
+    meta.run = RunInfo{stage->name, sim.step, static_cast<std::int64_t>(std::ceil(stage->duration / sim.dt - 1e-9)), sim.time, {}, {}};
   }
   meta.writer = "run-stage";
   meta.scene_path = scene.path;

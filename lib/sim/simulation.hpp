@@ -83,7 +83,8 @@ class Simulation {
   void find_contacts();
   void count_bonds();
   void index_contacts_per_particle();
-  void sum_forces();
+  // The net force and torque on particle i from gravity and its contacts (eq. 2.31-2.34).
+  void net_load(long i, Vec3& force, Vec3& torque) const;
   void integrate();
 
   bool has_bonds_ = false;
@@ -96,7 +97,6 @@ class Simulation {
   mutable bool pair_view_current_ = false, wall_view_current_ = false;
   void contacts_modified();  // the views must be compacted again
   std::vector<WallGeometry> wall_geometry_;
-  std::vector<Vec3> force_, torque_;
   // Per-particle lists of candidate entries in a fixed order, rebuilt with the neighbour list.
   std::vector<int> csr_start_, csr_entry_, csr_fill_;
   std::vector<int> wall_runs_;  // first wall candidate of each particle, then the end
