@@ -6,6 +6,10 @@
 //   settle_bench mesh N STEPS THREADS T   the same with the floor made of about T triangles (a
 //                                         rectangle mesh, as an STL floor would be): the price of a
 //                                         fine mesh wall against one plane
+//   settle_bench shuffled N STEPS THREADS SORT_EVERY
+//                                         the same with the storage order shuffled (as random
+//                                         placement leaves it) and re-sorted along the cells every
+//                                         SORT_EVERY steps (0 = never): the price of poor locality
 //   settle_bench lammps-data N FILE       writes the same initial state as a LAMMPS data file
 // The loop time covers the steps only (scene construction excluded), as LAMMPS's "Loop time".
 #include <omp.h>
@@ -18,6 +22,9 @@
 #include <cstdlib>
 #include <cstring>
 #include <exception>
+#include <numeric>
+#include <random>
+#include <algorithm>
 
 #include "settle_scene.hpp"
 #include "walls/primitives.hpp"
@@ -38,10 +45,18 @@ double rotational_energy(const Simulation& sim) {
   return e;
 }
 
-int run(long n, long steps, int threads, long floor_triangles = 0) {
+int run(long n, long steps, int threads, long floor_triangles = 0, long shuffled_sort_every = -1) {
   omp_set_num_threads(threads);
   const long rss_before = peak_rss_kb();
   Simulation sim = bench::settle_scene(bench::settle_size(n));
+  if (shuffled_sort_every >= 0) {
+    std::vector<std::size_t> order(sim.particles.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::shuffle(order.begin(), order.end(), std::mt19937_64(7));
+    sim.particles.reorder(order);
+    sim.params.sort_every = shuffled_sort_every;
+    sim.params.sort_min_particles = 0;
+  }
   if (floor_triangles > 0) {
     // Wall 4 is the floor (box_face axis 2, min side): replace it by a mesh of the same rectangle.
     const std::vector<Vec3> f = sim.walls[4].base;
@@ -68,6 +83,8 @@ int main(int argc, char** argv) {
     if (argc == 5 && std::strcmp(argv[1], "run") == 0) return run(std::atol(argv[2]), std::atol(argv[3]), std::atoi(argv[4]));
     if (argc == 6 && std::strcmp(argv[1], "mesh") == 0)
       return run(std::atol(argv[2]), std::atol(argv[3]), std::atoi(argv[4]), std::atol(argv[5]));
+    if (argc == 6 && std::strcmp(argv[1], "shuffled") == 0)
+      return run(std::atol(argv[2]), std::atol(argv[3]), std::atoi(argv[4]), 0, std::atol(argv[5]));
     if (argc == 4 && std::strcmp(argv[1], "lammps-data") == 0) {
       const long n = std::atol(argv[2]);
       const bench::LatticeSize size = bench::settle_size(n);

@@ -18,6 +18,8 @@ class NeighbourList {
   // Rebuilds if needed for the current positions; returns true when it did. `margin` is how far
   // apart a bonded pair can still hold (0 without bonds); `skin` the extra distance listed.
   bool update(const Particles& p, const std::vector<WallGeometry>& walls, double margin, double skin);
+  // Forget the list (particle storage was reordered): the next update rebuilds it.
+  void invalidate() { valid_ = false; }
 
   // Candidates sorted by key, with the storage slots of the last build.
   const std::vector<FoundContact>& pairs() const { return pairs_; }

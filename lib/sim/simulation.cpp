@@ -1,9 +1,11 @@
 #include "sim/simulation.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <utility>
 
 #include "sim/force_loop.hpp"
 #include "core/error.hpp"
@@ -11,6 +13,8 @@
 namespace dem {
 
 void Simulation::advance() {
+  if (params.sort_every > 0 && step % params.sort_every == 0 && static_cast<long>(particles.size()) >= params.sort_min_particles)
+    sort_storage();
   find_contacts();
   const ForceLoopInput in{particles, materials, walls, wall_geometry_, wall_runs_, dt};
   const double worst_overlap = compute_contact_forces(in, choose_force_variant(*this), pairs_, walls_);
@@ -124,6 +128,38 @@ double Simulation::skin() const {
   double sum = 0;
   for (double a : particles.radius) sum += a;
   return particles.size() ? 0.2 * sum / particles.size() : 0.0;  // 0.2 x mean radius
+}
+
+void Simulation::sort_storage() {
+  // Cells of edge one largest diameter (at most 2^20 per axis), in z, then y, then x order; within
+  // a cell the old order.
+  const Particles& p = particles;
+  const std::size_t n = p.size();
+  if (n == 0) return;
+  Vec3 lo = p.x[0], hi = p.x[0];
+  double rmax = 0;
+  for (std::size_t k = 0; k < n; ++k) lo = lo.cwiseMin(p.x[k]), hi = hi.cwiseMax(p.x[k]), rmax = std::max(rmax, p.radius[k]);
+  if (!lo.allFinite() || !hi.allFinite() || !(rmax > 0)) return;  // integrate() reports non-finite states
+  constexpr double kMaxCells = 1 << 20;
+  std::array<double, 3> edge;
+  std::array<std::int64_t, 3> dims;
+  for (int d = 0; d < 3; ++d) {
+    edge[d] = std::max(2 * rmax, (hi[d] - lo[d]) / kMaxCells);
+    dims[d] = static_cast<std::int64_t>(std::min(kMaxCells, (hi[d] - lo[d]) / edge[d])) + 1;
+  }
+  std::vector<std::pair<std::int64_t, std::size_t>> key(n);
+#pragma omp parallel for schedule(static)
+  for (long k = 0; k < static_cast<long>(n); ++k) {
+    std::array<std::int64_t, 3> c;
+    for (int d = 0; d < 3; ++d) c[d] = static_cast<std::int64_t>(std::min<double>(dims[d] - 1, (p.x[k][d] - lo[d]) / edge[d]));
+    key[k] = {(c[2] * dims[1] + c[1]) * dims[0] + c[0], static_cast<std::size_t>(k)};
+  }
+  std::sort(key.begin(), key.end());  // (cell, old slot): unique keys, one order for any thread count
+  std::vector<std::size_t> order(n);
+  for (std::size_t k = 0; k < n; ++k) order[k] = key[k].second;
+  particles.reorder(order);
+  // The slots in the lists are stale: the next search rebuilds them (history is kept by ids).
+  neighbours_.invalidate();
 }
 
 void Simulation::find_contacts() {

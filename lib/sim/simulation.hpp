@@ -22,6 +22,12 @@ struct SimParams {
                                      // scale (sim/energy_audit.hpp); 0 = no check
   double skin = 0;                   // neighbour-list skin [m]; 0 = 0.2 x mean radius. Speed only:
                                      // the contacts found do not depend on it
+  // Storage order: every sort_every steps (at steps that are multiples of it, so that a resumed run
+  // sorts where an uninterrupted one does), samples of at least sort_min_particles are put in the
+  // order of a grid of cells, so that neighbours sit close in memory. Speed only: no result
+  // depends on the storage order (ids, not slots, order every sum). 0 = never.
+  long sort_every = 1000;
+  long sort_min_particles = 10000;
 };
 
 // What the particles exert on one wall element this step.
@@ -80,6 +86,7 @@ class Simulation {
   void audit_energy();
   [[noreturn]] void report_energy_gain() const;
   void update_wall_geometry();
+  void sort_storage();
   void find_contacts();
   void count_bonds();
   void index_contacts_per_particle();

@@ -12,7 +12,24 @@ void compact(std::vector<T>& a, const std::vector<bool>& keep) {
     if (keep[k]) a[out++] = a[k];
   a.resize(out);
 }
+template <class T>
+void gather(std::vector<T>& a, const std::vector<std::size_t>& order) {
+  std::vector<T> b(a.size());
+  for (std::size_t k = 0; k < order.size(); ++k) b[k] = a[order[k]];
+  a.swap(b);
+}
 }  // namespace
+
+void Particles::reorder(const std::vector<std::size_t>& order) {
+  gather(id, order);
+  gather(x, order);
+  gather(v, order);
+  gather(w, order);
+  gather(x_ref, order);
+  gather(radius, order);
+  gather(mass, order);
+  gather(material, order);
+}
 
 void Particles::keep_only(const std::vector<bool>& keep) {
   compact(id, keep);

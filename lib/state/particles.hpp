@@ -39,6 +39,8 @@ struct Particles {
 
   // Keep the particles for which keep[k] is true, preserving storage order.
   void keep_only(const std::vector<bool>& keep);
+  // Storage slot k takes the particle of slot order[k] (order: a permutation of the slots).
+  void reorder(const std::vector<std::size_t>& order);
 
   Index max_id() const;
 };
