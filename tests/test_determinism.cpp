@@ -93,10 +93,12 @@ TEST(Determinism, StorageOrderChangesNoBit) {
     EXPECT_TRUE(same_bits(by_id(plain, plain.particles.x), by_id(sorted, sorted.particles.x))) << threads << " thread(s)";
     EXPECT_TRUE(same_bits(by_id(plain, plain.particles.v), by_id(sorted, sorted.particles.v))) << threads << " thread(s)";
     EXPECT_TRUE(same_bits(by_id(plain, plain.particles.w), by_id(sorted, sorted.particles.w))) << threads << " thread(s)";
-    // The contact lists are keyed by ids: the same keys and springs in the same order.
+    // The contact lists are keyed by ids: the same keys and springs in the same order. (This
+    // cloud has pair contacts at the end but none with the walls, so only pairs are compared.)
+    ASSERT_GT(plain.pair_contacts().size(), 0u) << "the test must exercise contacts";
     EXPECT_EQ(plain.pair_contacts().key_i, sorted.pair_contacts().key_i);
+    EXPECT_EQ(plain.pair_contacts().key_j, sorted.pair_contacts().key_j);
     EXPECT_TRUE(same_bits(plain.pair_contacts().spring, sorted.pair_contacts().spring));
-    EXPECT_TRUE(same_bits(plain.wall_contacts().spring, sorted.wall_contacts().spring));
   }
 }
 
