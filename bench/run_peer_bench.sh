@@ -1,15 +1,19 @@
 #!/usr/bin/env bash
-# Our code beside LAMMPS and LIGGGHTS (Debian packages) on the settle scene, in one session on one
-# machine: every configuration REPS times, interleaved, 1 and 2 threads/processes. Writes
-# bench/results/peers_runs.csv (every run) and bench/results/peers.md (medians and ratios).
-# Usage: bash bench/run_peer_bench.sh [REPS]     (from anywhere; about 25 minutes on 2 cores with REPS=3)
+# Our code beside LAMMPS and LIGGGHTS (Debian packages) on the settle scenes (10^4 and 10^5 spheres
+# falling into a box) and the chute scene (32,000 spheres flowing down a periodic chute), in one
+# session on one machine: every configuration REPS times, interleaved, 1 and 2 threads/processes.
+# Writes bench/results/peers_runs.csv (every run) and bench/results/peers.md (medians and ratios).
+# Usage: bash bench/run_peer_bench.sh [REPS] [SCENES]   (from anywhere; about 40 minutes on 2 cores
+#   with REPS=3; SCENES, default "settle:10000:20000 settle:100000:2500 chute:32000:6000",
+#   each SCENE:PARTICLES:STEPS)
 # Needs: apt-get install lammps liggghts openmpi-bin time (done here when run as root).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
 reps=${1:-3}
+scenes=${2:-"settle:10000:20000 settle:100000:2500 chute:32000:6000"}
 make -f Makefile.cases build > /dev/null
-cmake --build build --target settle_bench -- --no-print-directory > /dev/null
+cmake --build build --target settle_bench chute_bench -- --no-print-directory > /dev/null
 missing=""
 for c in lmp:lammps liggghts:liggghts mpirun:openmpi-bin /usr/bin/time:time; do command -v "${c%%:*}" > /dev/null || missing="$missing ${c#*:}"; done
 if [ -n "$missing" ]; then
@@ -19,35 +23,42 @@ fi
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_btl_vader_single_copy_mechanism=none
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-cp bench/peers/in.settle.* "$work/"
+cp bench/peers/in.settle.* bench/peers/in.chute.* "$work/"
 csv=bench/results/peers_runs.csv
 mkdir -p bench/results
 echo "scene,code,procs,particles,steps,loop_s,psps,peak_rss_kb,rep" > "$csv.tmp"
 
 # One run: prints "loop_seconds peak_rss_kb" (peak RSS of the largest process).
-run_one() {  # code procs N steps
-  local code=$1 np=$2 n=$3 steps=$4 log="$work/log" t="$work/time"
+run_one() {  # code procs scene N steps
+  local code=$1 np=$2 scene=$3 n=$4 steps=$5 log="$work/log" t="$work/time"
   case $code in
-    dem) OMP_NUM_THREADS=$np /usr/bin/time -v -o "$t" "$root/build/bench/settle_bench" run "$n" "$steps" "$np" > "$log"
+    dem) local bench=("$root/build/bench/settle_bench" run "$n"); [ "$scene" = chute ] && bench=("$root/build/bench/chute_bench" run)
+         OMP_NUM_THREADS=$np /usr/bin/time -v -o "$t" "${bench[@]}" "$steps" "$np" > "$log"
          awk '{for (i = 1; i < NF; i++) if ($i == "loop_s") print $(i + 1)}' "$log" | tr '\n' ' ' ;;
     lammps|liggghts)
          local exe=lmp; [ "$code" = liggghts ] && exe=liggghts
          local launch=(); [ "$np" -gt 1 ] && launch=(mpirun -np "$np" --bind-to none)
-         (cd "$work" && /usr/bin/time -v -o "$t" "${launch[@]}" "$exe" -in "in.settle.$code" -var N "$n" -var nsteps "$steps" -log none > "$log" 2>&1)
+         (cd "$work" && /usr/bin/time -v -o "$t" "${launch[@]}" "$exe" -in "in.$scene.$code" -var N "$n" -var nsteps "$steps" -log none > "$log" 2>&1)
          awk '/^Loop time of/ {print $4}' "$log" | tr '\n' ' ' ;;
   esac
   awk -F: '/Maximum resident set size/ {gsub(/ /, "", $2); print $2}' "$t"
 }
 
-for spec in 10000:20000 100000:2500; do
-  n=${spec%%:*}; steps=${spec#*:}
-  "$root/build/bench/settle_bench" lammps-data "$n" "$work/data.settle.$n"
+for spec in $scenes; do
+  IFS=: read -r scene n steps <<< "$spec"
+  case $scene in
+    settle) "$root/build/bench/settle_bench" lammps-data "$n" "$work/data.settle.$n" ;;
+    chute) [ "$n" = 32000 ] || { echo "chute: the scene has 32000 particles" >&2; exit 2; }
+           "$root/build/bench/chute_bench" lammps-data "$work/data.chute" ;;
+    *) echo "unknown scene $scene (settle or chute)" >&2; exit 2 ;;
+  esac
+  label="$scene $n"; [ "$scene" = chute ] && label=chute
   for rep in $(seq 1 "$reps"); do
     for np in 1 2; do
       for code in dem lammps liggghts; do
-        read -r loop rss < <(run_one "$code" "$np" "$n" "$steps")
+        read -r loop rss < <(run_one "$code" "$np" "$scene" "$n" "$steps")
         psps=$(awk -v n="$n" -v s="$steps" -v t="$loop" 'BEGIN {printf "%.4g", n * s / t}')
-        echo "settle $n,$code,$np,$n,$steps,$loop,$psps,$rss,$rep" | tee -a "$csv.tmp"
+        echo "$label,$code,$np,$n,$steps,$loop,$psps,$rss,$rep" | tee -a "$csv.tmp"
       done
     done
   done

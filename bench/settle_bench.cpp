@@ -13,7 +13,6 @@
 //   settle_bench lammps-data N FILE       writes the same initial state as a LAMMPS data file
 // The loop time covers the steps only (scene construction excluded), as LAMMPS's "Loop time".
 #include <omp.h>
-#include <sys/resource.h>
 
 #include <chrono>
 #include <cmath>
@@ -26,6 +25,7 @@
 #include <random>
 #include <algorithm>
 
+#include "bench_report.hpp"
 #include "settle_scene.hpp"
 #include "walls/primitives.hpp"
 
@@ -33,17 +33,7 @@ using namespace dem;
 
 namespace {
 
-long peak_rss_kb() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return u.ru_maxrss;
-}
-
-double rotational_energy(const Simulation& sim) {
-  double e = 0;
-  for (std::size_t i = 0; i < sim.particles.size(); ++i) e += 0.5 * sim.particles.inertia(i) * sim.particles.w[i].squaredNorm();
-  return e;
-}
+using bench::peak_rss_kb;
 
 int run(long n, long steps, int threads, long floor_triangles = 0, long shuffled_sort_every = -1) {
   omp_set_num_threads(threads);
@@ -68,11 +58,7 @@ int run(long n, long steps, int threads, long floor_triangles = 0, long shuffled
   const auto t0 = std::chrono::steady_clock::now();
   for (long s = 0; s < steps; ++s) sim.advance();
   const double loop = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  const long rss = peak_rss_kb();
-  std::printf("walls %zu particles %zu steps %ld threads %d loop_s %.4f psps %.4g contacts %zu ke %.10g rke %.10g rss_kb %ld rss_increase_kb %ld\n",
-              sim.walls.size(), sim.particles.size(), steps, threads, loop, sim.particles.size() * static_cast<double>(steps) / loop,
-              sim.pair_contacts().size() + sim.wall_contacts().size(), sim.kinetic_energy() - rotational_energy(sim),
-              rotational_energy(sim), rss, rss - rss_before);
+  bench::print_run(sim, steps, threads, loop, rss_before);
   return 0;
 }
 

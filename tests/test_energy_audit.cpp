@@ -37,7 +37,7 @@ Simulation lifted_sphere(double restitution, double dt) {
 double stored_now(const Simulation& sim) {
   std::vector<WallGeometry> g(sim.walls.size());
   for (std::size_t w = 0; w < sim.walls.size(); ++w) place_wall(sim.walls[w], sim.time, sim.dt, g[w]);
-  return stored_energy_bound(sim.particles, sim.materials, sim.walls, g, sim.pair_contacts(), sim.wall_contacts());
+  return stored_energy_bound(sim.particles, sim.materials, sim.walls, g, sim.periodic, sim.pair_contacts(), sim.wall_contacts());
 }
 
 TEST(EnergyAudit, BalanceClosesWithoutDampingAndShowsTheLossWithIt) {
@@ -80,9 +80,9 @@ TEST(EnergyAudit, TooLongAStepIsStoppedAtTheFirstBounce) {
   free.particles.x[0].z() = 0.02;
   free.dt = 2 * free.critical_time_step();
   free.params.max_energy_gain = 0;
-  const MechanicalEnergy e0 = mechanical_energy(free.particles, free.params.gravity);
+  const MechanicalEnergy e0 = mechanical_energy(free.particles, free.params.gravity, free.periodic);
   ASSERT_NO_THROW(for (int s = 0; s <= steps; ++s) free.advance());
-  const double gained = mechanical_energy(free.particles, free.params.gravity).total() - e0.total();
+  const double gained = mechanical_energy(free.particles, free.params.gravity, free.periodic).total() - e0.total();
   EXPECT_GT(gained, 0.5 * free.particles.mass[0] * 9.81 * 0.01);  // a sound step loses energy in a bounce
 }
 

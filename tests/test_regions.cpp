@@ -268,12 +268,13 @@ TEST(Region, SceneSyntax) {
   EXPECT_TRUE(m.contains(Vec3(0.01, 0.01, 0.005)));
   EXPECT_FALSE(m.contains(Vec3(0.004, 0.01, 0.005))) << "translated by 5 mm";
   ASSERT_EQ(s.stages[0].actions.size(), 2u);
-  const Region& c = s.stages[0].actions[0].region;
+  ASSERT_TRUE(s.stages[0].actions[0].region && s.stages[0].actions[1].region);
+  const Region& c = *s.stages[0].actions[0].region;
   EXPECT_EQ(c.kind, Region::Kind::Cylinder);
   EXPECT_EQ(c.axis, Vec3::UnitZ()) << "axis defaults to +z";
   EXPECT_EQ(c.length, 0) << "no length: infinite";
   EXPECT_TRUE(c.contains(Vec3(0.012, 0.01, 100.0)));
-  const Region& f = s.stages[0].actions[1].region;
+  const Region& f = *s.stages[0].actions[1].region;
   EXPECT_EQ(f.axis, Vec3::UnitX());
   EXPECT_EQ(f.length, 0.01);
   EXPECT_TRUE(f.contains(Vec3(0.015, 0.01, 0.011)));

@@ -234,6 +234,22 @@ std::vector<BadCase> bad_cases() {
        {"generation.cut[0].outside = true", "unknown key", "allowed here: inside, region"}},
       {"cut with a bad region", replace(kValid, "[[stage]]", "[[generation.cut]]\nregion = { type = \"half_space\", point = [0, 0, 0], normal = [0, 0] }\n\n[[stage]]"),
        {"generation.cut[0].region.normal", "array of 3 numbers"}},
+      {"periodic period reversed", replace(kValid, "gravity = [0.0, 0.0, -9.81]", "gravity = [0.0, 0.0, -9.81]\nperiodic = { x = [0.02, 0.0] }"),
+       {"scene.toml:3", "simulation.periodic.x = [...]", "hi must exceed lo"}},
+      {"periodic period of one number", replace(kValid, "gravity = [0.0, 0.0, -9.81]", "gravity = [0.0, 0.0, -9.81]\nperiodic = { y = 0.02 }"),
+       {"simulation.periodic.y = 0.02", "expected [lo, hi] in m"}},
+      {"periodic with no axis", replace(kValid, "gravity = [0.0, 0.0, -9.81]", "gravity = [0.0, 0.0, -9.81]\nperiodic = {}"),
+       {"simulation.periodic = {...}", "at least one axis"}},
+      {"periodic with an unknown axis", replace(kValid, "gravity = [0.0, 0.0, -9.81]", "gravity = [0.0, 0.0, -9.81]\nperiodic = { w = [0.0, 0.02] }"),
+       {"simulation.periodic.w", "unknown key", "allowed here: x, y, z"}},
+      {"generation box beyond the period",
+       replace(kValid, "gravity = [0.0, 0.0, -9.81]", "gravity = [0.0, 0.0, -9.81]\nperiodic = { x = [0.0, 0.01] }"),
+       {"generation.box_max", "along the periodic axis x", "within simulation.periodic"}},
+      {"sort_every negative", replace(kValid, "gravity = [0.0, 0.0, -9.81]", "gravity = [0.0, 0.0, -9.81]\nsort_every = -1"),
+       {"simulation.sort_every = -1", "out of range: allowed [0, 1000000000]"}},
+      {"fix without region", kValid + "\n[[stage.action]]\ntype = \"fix\"\n", {"stage[0].action[0].region is missing"}},
+      {"release with a bad inside", kValid + "\n[[stage.action]]\ntype = \"release\"\ninside = \"yes\"\n",
+       {"stage[0].action[0].inside = \"yes\"", "expected true or false"}},
   };
 }
 

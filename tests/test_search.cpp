@@ -4,18 +4,22 @@
 #include <algorithm>
 #include <random>
 
+#include "core/error.hpp"
 #include "search/linked_cells.hpp"
 #include "sim/simulation.hpp"
 
 namespace dem {
 namespace {
 
-std::vector<FoundContact> brute_force(const Particles& p) {
+// Every overlapping pair, between nearest images where `box` is periodic; two held particles never
+// interact.
+std::vector<FoundContact> brute_force(const Particles& p, const PeriodicBox& box = {}) {
   std::vector<FoundContact> out;
   for (std::size_t i = 0; i < p.size(); ++i)
     for (std::size_t j = i + 1; j < p.size(); ++j) {
       const double r = p.radius[i] + p.radius[j];
-      if ((p.x[i] - p.x[j]).squaredNorm() < r * r)
+      if (p.fixed[i] && p.fixed[j]) continue;
+      if (box.nearest(p.x[i] - p.x[j]).squaredNorm() < r * r)
         out.push_back({std::min(p.id[i], p.id[j]), std::max(p.id[i], p.id[j]), int(i), int(j)});
     }
   std::sort(out.begin(), out.end());
@@ -52,6 +56,51 @@ TEST_P(SearchMatchesBruteForce, PolydisperseRandomCloud) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Seeds, SearchMatchesBruteForce, ::testing::Values(1, 2, 3));
+
+// Periodic along x and y: the pairs are those between nearest images, with a period of exactly
+// three search cells (the fewest the search accepts) and of many, size ratio 10; pairs of two held
+// particles are skipped. A period of two cells is refused with a message.
+TEST(LinkedCells, PeriodicMatchesBruteForceBetweenNearestImages) {
+  std::size_t across = 0;
+  for (const auto& [length, n] : {std::pair{0.12, 60}, std::pair{0.5, 1200}}) {
+    std::mt19937_64 rng(9);
+    std::uniform_real_distribution<double> u(0, 1);
+    PeriodicBox box;
+    box.axis = {true, true, false};
+    box.lo = Vec3(0, 0, 0);
+    box.hi = Vec3(length, length, 0);
+    Particles p;
+    for (int k = 0; k < n; ++k) {
+      p.add(k, Vec3(length * u(rng), length * u(rng), 0.3 * u(rng)), 0.002 + 0.018 * u(rng), 1000, 0);
+      p.fixed[k] = k % 5 == 0;
+    }
+    p.radius[0] = 0.02;  // 2 Rmax = 0.04 m: a period of 0.12 m is three cells
+    std::vector<FoundContact> fast;
+    LinkedCells cells;
+    cells.find_near_pairs(p, box, fast);
+    std::sort(fast.begin(), fast.end());
+    const std::vector<FoundContact> slow = brute_force(p, box);
+    for (const FoundContact& c : slow) across += (p.x[c.slot_i] - p.x[c.slot_j]).norm() > p.radius[c.slot_i] + p.radius[c.slot_j];
+    ASSERT_EQ(fast.size(), slow.size()) << "period " << length;
+    for (std::size_t k = 0; k < fast.size(); ++k) {
+      EXPECT_EQ(fast[k].key_i, slow[k].key_i);
+      EXPECT_EQ(fast[k].key_j, slow[k].key_j);
+    }
+  }
+  EXPECT_GT(across, 3u) << "some pairs touch across the boundary only";
+  Particles p;
+  p.add(0, Vec3(0.01, 0.01, 0), 0.02, 1000, 0);
+  PeriodicBox narrow;
+  narrow.axis = {true, false, false};
+  narrow.hi = Vec3(0.1, 0, 0);
+  std::vector<FoundContact> out;
+  try {
+    LinkedCells().find_near_pairs(p, narrow, out);
+    FAIL() << "a period of two cells must be refused";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("the period along x (0.1 m) must hold at least 3 search cells"), std::string::npos) << e.what();
+  }
+}
 
 // Along a trajectory (the neighbour list is reused between rebuilds, with a skin), the contacts of
 // every step are exactly the overlapping pairs and particle-wall overlaps an O(N^2) check finds,
@@ -107,6 +156,104 @@ TEST(NeighbourList, ContactsEqualBruteForceEveryStep) {
   EXPECT_GT(wall_contacts, 100u);
   EXPECT_GT(sim.neighbour_builds(), 3) << "and several list rebuilds";
   EXPECT_LT(sim.neighbour_builds(), 300) << "the list is reused between rebuilds";
+}
+
+// The same along a trajectory in a box periodic along x and y (floor and lid walls in z), with a
+// fifth of the particles held in place: every step's pair contacts are those between nearest
+// images, particles leave at one side and re-enter at the other (image counts), and a free
+// particle's unwrapped position is continuous.
+TEST(NeighbourList, PeriodicContactsEqualBruteForceEveryStep) {
+  std::mt19937_64 rng(6);
+  std::uniform_real_distribution<double> u(0, 1);
+  Simulation sim;
+  Material m;
+  m.name = "m";
+  m.kn = m.kt = 1e3;
+  m.restitution = 0.9;
+  sim.materials = MaterialTable({m}, {});
+  const double L = 0.05;
+  sim.walls.push_back(Wall{"floor", 0, {Vec3(0, 0, 0), Vec3(L, 0, 0), Vec3(L, L, 0), Vec3(0, L, 0)}, {}});
+  sim.walls.push_back(Wall{"lid", 0, {Vec3(0, 0, L), Vec3(L, 0, L), Vec3(L, L, L), Vec3(0, L, L)}, {}});
+  PeriodicBox box;
+  box.axis = {true, true, false};
+  box.hi = Vec3(L, L, 0);
+  for (int k = 0; k < 300; ++k) {
+    const double a = 0.0005 + 0.0035 * u(rng);
+    sim.particles.add(k, Vec3(L * u(rng), L * u(rng), a + (L - 2 * a) * u(rng)), a, 2500, 0);
+    sim.particles.v[k] = Vec3(2 * (u(rng) - 0.5), 2 * (u(rng) - 0.5), u(rng) - 0.5);
+    sim.particles.fixed[k] = k % 5 == 0;
+    if (sim.particles.fixed[k]) sim.particles.v[k] = Vec3::Zero();
+  }
+  sim.set_periodic(box);
+  sim.dt = 0.1 * sim.critical_time_step();
+  sim.params.gravity = Vec3::Zero();
+  sim.params.max_overlap = 10;  // random placement overlaps deeply; this test is about the search
+  std::size_t across = 0, wraps = 0;
+  const std::size_t n = sim.particles.size();
+  for (int s = 0; s < 400; ++s) {
+    const std::vector<FoundContact> pairs = brute_force(sim.particles, box);
+    for (const FoundContact& c : pairs)
+      across += (sim.particles.x[c.slot_i] - sim.particles.x[c.slot_j]).norm() > sim.particles.radius[c.slot_i] + sim.particles.radius[c.slot_j];
+    std::vector<Vec3> before(n);
+    std::vector<Vec3i> image = sim.particles.image;
+    for (std::size_t k = 0; k < n; ++k) before[k] = sim.unwrapped_position(k);
+    sim.advance();
+    for (std::size_t k = 0; k < n; ++k) {
+      wraps += sim.particles.image[k] != image[k];
+      // Unwrapped, every path is continuous: x^{n+1} = x^n + v^{n+1/2} dt (to round-off).
+      ASSERT_LT((sim.unwrapped_position(k) - before[k] - sim.particles.v[k] * sim.dt).norm(), 1e-15) << "step " << s << " particle " << k;
+    }
+    ASSERT_EQ(sim.pair_contacts().size(), pairs.size()) << "step " << s;
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+      ASSERT_EQ(sim.pair_contacts().key_i[k], pairs[k].key_i);
+      ASSERT_EQ(sim.pair_contacts().key_j[k], pairs[k].key_j);
+    }
+    for (std::size_t k = 0; k < sim.particles.size(); ++k) {
+      ASSERT_GE(sim.particles.x[k].x(), 0);
+      ASSERT_LT(sim.particles.x[k].x(), L);
+      if (sim.particles.fixed[k]) {
+        ASSERT_EQ(sim.particles.v[k], Vec3::Zero());
+      }
+    }
+  }
+  EXPECT_GT(across, 50u) << "pairs must touch across the boundaries";
+  EXPECT_GT(wraps, 10u) << "particles must leave at one side and re-enter at the other";
+  EXPECT_GT(sim.neighbour_builds(), 3);
+}
+
+// Pair lists are stored along the particles' storage order (place_by_storage), not in key order:
+// through a rebuild the history still follows the keys, and active_contacts lists key order.
+TEST(ContactList, HistoryFollowsKeysWhereverStored) {
+  // Ids 1, 2, 3, 5 in slots 4, 3, 2, 0: three candidates, in key order.
+  const std::vector<FoundContact> first = {{1, 2, 4, 3}, {1, 5, 4, 0}, {2, 3, 3, 2}};
+  std::vector<int> count;
+  KeyOrder place, by_key;
+  place_by_storage(first, 5, count, place);
+  // Grouped by the smaller slot: (1,5) at slot 0, (2,3) at 2, (1,2) at 3.
+  EXPECT_EQ(place, (KeyOrder{2, 0, 1}));
+  ContactList list;
+  std::vector<int> from;
+  carry_history(list, by_key, first, place, from);
+  ASSERT_EQ(by_key, (KeyOrder{2, 0, 1}));
+  EXPECT_EQ(list.key_j, (std::vector<Index>{5, 3, 2}));
+  for (std::size_t k = 0; k < list.size(); ++k) list.spring[k] = Vec3(list.key_j[k], 0, 0), list.active[k] = 1;
+  list.bonded[0] = 1;  // (1,5)
+  // Rebuild: (1,2) is gone, (1,3) is new.
+  const std::vector<FoundContact> second = {{1, 3, 4, 2}, {1, 5, 4, 0}, {2, 3, 3, 2}};
+  place_by_storage(second, 5, count, place);
+  EXPECT_EQ(place, (KeyOrder{1, 0, 2}));  // slot 0: (1,5); slot 2: (1,3) then (2,3), in key order
+  carry_history(list, by_key, second, place, from);
+  ASSERT_EQ(list.size(), 3u);
+  EXPECT_EQ(list.spring[0], Vec3(5, 0, 0));  // (1,5) kept its spring and bond
+  EXPECT_EQ(list.bonded[0], 1);
+  EXPECT_EQ(list.spring[1], Vec3::Zero());   // (1,3) is new: no history
+  EXPECT_EQ(list.active[1], 0);
+  EXPECT_EQ(list.spring[2], Vec3(3, 0, 0));  // (2,3)
+  EXPECT_EQ(list.bonded[2], 0);
+  ContactList view;
+  active_contacts(list, by_key, view);  // the contacts of the last step, in key order
+  EXPECT_EQ(view.key_i, (std::vector<Index>{1, 2}));
+  EXPECT_EQ(view.key_j, (std::vector<Index>{5, 3}));
 }
 
 }  // namespace

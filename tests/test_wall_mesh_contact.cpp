@@ -197,7 +197,7 @@ TEST(MeshContact, BinnedWallSearchEqualsBruteForce) {
   for (int k = 0; k < 3000; ++k) p.add(k, Vec3(0.06 * u(rng), 0.06 * u(rng), 0.05 + 0.06 * u(rng)), 0.002 + 0.002 * u(rng) * u(rng), 2500, 0);
   NeighbourList list;
   const double skin = 0.001;
-  list.update(p, geometry, 0, skin);
+  list.update(p, PeriodicBox{}, geometry, 0, skin);
   std::vector<std::pair<Index, Index>> want, got;
   for (std::size_t k = 0; k < p.size(); ++k)
     for (std::size_t w = 0; w < geometry.size(); ++w) {

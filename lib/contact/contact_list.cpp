@@ -1,5 +1,6 @@
 #include "contact/contact_list.hpp"
 
+#include <algorithm>
 #include <utility>
 
 namespace dem {
@@ -28,33 +29,73 @@ void ContactList::push_back_from(const ContactList& from, std::size_t k) {
   sum.push_back(from.sum[k]);
 }
 
-void carry_history(ContactList& list, const std::vector<FoundContact>& found, ContactList& next) {
-  // Merge-join of two key-sorted sequences, O(old + new); both lists keep their capacity, so a
-  // run does not allocate here once warmed up.
-  next.resize(found.size());
-  std::size_t o = 0;
-  for (std::size_t k = 0; k < found.size(); ++k) {
-    const FoundContact& f = found[k];
-    while (o < list.size() && (list.key_i[o] < f.key_i || (list.key_i[o] == f.key_i && list.key_j[o] < f.key_j))) ++o;
-    const bool before = o < list.size() && list.key_i[o] == f.key_i && list.key_j[o] == f.key_j;
-    next.key_i[k] = f.key_i;
-    next.key_j[k] = f.key_j;
-    next.slot_i[k] = f.slot_i;
-    next.slot_j[k] = f.slot_j;
-    next.spring[k] = before ? list.spring[o] : Vec3::Zero();
-    next.bonded[k] = before ? list.bonded[o] : 0;
-    // Whether it was a contact at the last step: the wall loop hands a lost contact's spring to a
-    // new one of the same particle (a sphere rolling from one mesh element onto the next).
-    next.active[k] = before ? list.active[o] : 0;
-    next.sum[k] = ContactSum();
-  }
-  std::swap(list, next);
+void place_by_storage(const std::vector<FoundContact>& found, std::size_t particles, std::vector<int>& count,
+                      KeyOrder& place) {
+  // A counting sort by the smaller slot: O(candidates + particles), and stable (key order within a
+  // group), so the places depend on the storage order only, never on the thread count.
+  count.assign(particles + 1, 0);
+  for (const FoundContact& f : found) ++count[std::min(f.slot_i, f.slot_j) + 1];
+  for (std::size_t s = 0; s < particles; ++s) count[s + 1] += count[s];
+  place.resize(found.size());
+  for (std::size_t r = 0; r < found.size(); ++r) place[r] = count[std::min(found[r].slot_i, found[r].slot_j)]++;
 }
 
-void active_contacts(const ContactList& list, ContactList& out) {
+namespace {
+
+// new[place(r)] = field[from[r]] (zero for a new candidate), then swapped in. One field's worth of
+// working memory at a time, freed again: at 10^6 particles the candidate list is the largest thing
+// in memory, and a second copy of it would set the peak (the allocation happens once per rebuild).
+template <class T>
+void carry_field(std::vector<T>& field, const std::vector<int>& from, const KeyOrder& place, const T& zero) {
+  std::vector<T> next(from.size());
+  for (std::size_t r = 0; r < from.size(); ++r) next[key_rank_to_position(place, r)] = from[r] >= 0 ? field[from[r]] : zero;
+  field.swap(next);
+}
+
+}  // namespace
+
+void carry_history(ContactList& list, KeyOrder& by_key, const std::vector<FoundContact>& found, KeyOrder& place,
+                   std::vector<int>& from) {
+  // Which old entry each candidate continues (-1: none): a merge-join of two key-sorted
+  // sequences, O(old + new).
+  from.resize(found.size());
+  std::size_t r_old = 0;
+  for (std::size_t r = 0; r < found.size(); ++r) {
+    const FoundContact& f = found[r];
+    from[r] = -1;
+    for (; r_old < list.size(); ++r_old) {
+      const int at = key_rank_to_position(by_key, r_old);
+      if (list.key_i[at] > f.key_i || (list.key_i[at] == f.key_i && list.key_j[at] >= f.key_j)) {
+        if (list.key_i[at] == f.key_i && list.key_j[at] == f.key_j) from[r] = at;
+        break;
+      }
+    }
+  }
+  carry_field(list.spring, from, place, Vec3(Vec3::Zero()));
+  carry_field(list.bonded, from, place, std::uint8_t{0});
+  // Whether it was a contact at the last step: the wall loop hands a lost contact's spring to a
+  // new one of the same particle (a sphere rolling from one mesh element onto the next).
+  carry_field(list.active, from, place, std::uint8_t{0});
+  // The rest belongs to the new candidates: keys and slots from the search; the force loop writes
+  // every normal and sum before anything reads them.
+  list.resize(found.size());
+  for (std::size_t r = 0; r < found.size(); ++r) {
+    const std::size_t k = key_rank_to_position(place, r);
+    list.key_i[k] = found[r].key_i;
+    list.key_j[k] = found[r].key_j;
+    list.slot_i[k] = found[r].slot_i;
+    list.slot_j[k] = found[r].slot_j;
+    list.sum[k] = ContactSum();
+  }
+  by_key.swap(place);
+}
+
+void active_contacts(const ContactList& list, const KeyOrder& by_key, ContactList& out) {
   out.clear();
-  for (std::size_t k = 0; k < list.size(); ++k)
+  for (std::size_t r = 0; r < list.size(); ++r) {
+    const int k = key_rank_to_position(by_key, r);
     if (list.active[k]) out.push_back_from(list, k);
+  }
 }
 
 }  // namespace dem

@@ -5,6 +5,8 @@
 // During a run the list holds every candidate pair of the neighbour list; `active` marks those
 // that touch (or hold by a bond) this step. History lives on the candidates, so nothing is merged,
 // copied or compacted per step: only a rebuild of the neighbour list carries it over, by key.
+// A candidate that is no contact holds a zero spring and a zero sum (the force loop and the loads
+// rely on it: they skip such candidates).
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -47,12 +49,33 @@ struct FoundContact {
   bool operator<(const FoundContact& o) const { return key_i != o.key_i ? key_i < o.key_i : key_j < o.key_j; }
 };
 
-// Makes `list` hold exactly the candidates in `found` (sorted by key), each carrying its history
-// (spring, bond) from the entry of `list` with the same key when there is one, else zero history.
-// `list` must be sorted by key too. `scratch` is working storage kept by the caller.
-void carry_history(ContactList& list, const std::vector<FoundContact>& found, ContactList& scratch);
+// Where a list's entries are stored, in key order: by_key[r] is the position of the entry with the
+// r-th smallest key. Empty: the list is stored in key order (a list read from a checkpoint, the
+// wall list). Pair lists are stored along the particles' storage order instead (place_by_storage),
+// so that the force loop reads neighbouring particles; every sum walks them in key order, so no
+// result depends on where an entry is stored.
+using KeyOrder = std::vector<int>;
 
-// The active entries of `list`, in order.
-void active_contacts(const ContactList& list, ContactList& out);
+// Positions for the candidates in `found` (sorted by key) along the particles' storage order:
+// grouped by the smaller of their two slots, in key order within a group. `count` is working
+// storage kept by the caller; `particles` the number of storage slots.
+void place_by_storage(const std::vector<FoundContact>& found, std::size_t particles, std::vector<int>& count,
+                      KeyOrder& place);
+
+// Makes `list` hold exactly the candidates in `found` (sorted by key), the r-th stored at position
+// place[r] (empty `place`: at r), each carrying its history (spring, bond) from the entry of `list`
+// with the same key when there is one, else zero history. `by_key` tells where `list` holds its
+// entries in key order; afterwards it holds `place`, and `place` the old order (swapped: no copy,
+// no allocation). `from` is working storage kept by the caller.
+void carry_history(ContactList& list, KeyOrder& by_key, const std::vector<FoundContact>& found, KeyOrder& place,
+                   std::vector<int>& from);
+
+// The position of the r-th entry in key order.
+inline int key_rank_to_position(const KeyOrder& by_key, std::size_t r) {
+  return by_key.empty() ? static_cast<int>(r) : by_key[r];
+}
+
+// The active entries of `list`, in key order.
+void active_contacts(const ContactList& list, const KeyOrder& by_key, ContactList& out);
 
 }  // namespace dem

@@ -7,6 +7,7 @@
 namespace dem {
 
 using Vec3 = Eigen::Vector3d;
+using Vec3i = Eigen::Vector3i;
 using Index = std::int64_t;  // stable particle id (never a storage slot)
 
 }  // namespace dem

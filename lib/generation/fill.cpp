@@ -89,21 +89,44 @@ void tile(Simulation& sim, int nx, int ny, int nz, const Vec3& period) {
           p.v.push_back(src.v[s]);
           p.w.push_back(src.w[s]);
           p.x_ref.push_back(src.x[s] + shift);
+          p.image.push_back(Vec3i::Zero());
           p.radius.push_back(src.radius[s]);
           p.mass.push_back(src.mass[s]);
           p.material.push_back(src.material[s]);
+          p.fixed.push_back(src.fixed[s]);
         }
       }
   sim.set_contacts({}, {});
 }
 
-std::size_t remove_particles(Simulation& sim, const Region& region, bool inside) {
-  Particles& p = sim.particles;
-  // The tests are independent (a mesh region's cost a particle each): in parallel, one byte each.
+namespace {
+// Which particles have their centre inside `region`, one byte each. The tests are independent (a
+// mesh region's cost a particle each): in parallel.
+std::vector<char> centres_inside(const Particles& p, const Region& region) {
   std::vector<char> in(p.size());
   const long n = static_cast<long>(p.size());
 #pragma omp parallel for schedule(dynamic, 256)
   for (long k = 0; k < n; ++k) in[k] = region.contains(p.x[k]);
+  return in;
+}
+}  // namespace
+
+std::size_t set_fixed(Simulation& sim, const Region* region, bool inside, bool fixed) {
+  Particles& p = sim.particles;
+  const std::vector<char> in = region ? centres_inside(p, *region) : std::vector<char>(p.size(), 1);
+  std::size_t n = 0;
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    if ((in[k] != 0) != inside) continue;
+    p.fixed[k] = fixed;
+    if (fixed) p.v[k] = p.w[k] = Vec3::Zero();
+    ++n;
+  }
+  return n;
+}
+
+std::size_t remove_particles(Simulation& sim, const Region& region, bool inside) {
+  Particles& p = sim.particles;
+  const std::vector<char> in = centres_inside(p, region);
   std::vector<bool> keep(p.size());
   std::set<Index> gone;
   for (std::size_t k = 0; k < p.size(); ++k) {

@@ -20,6 +20,11 @@ void tile(Simulation& sim, int nx, int ny, int nz, const Vec3& period);
 // contacts (SPEC §9 step 4: other shapes come from a box by cutting). Returns how many it removed.
 std::size_t remove_particles(Simulation& sim, const Region& region, bool inside);
 
+// Holds in place (fixed = true: velocity and spin set to zero) or releases the particles whose
+// centre is inside `region` (outside it when !inside; every particle when region is null).
+// Returns how many it selected.
+std::size_t set_fixed(Simulation& sim, const Region* region, bool inside, bool fixed);
+
 // Bounding box of the spheres (centres +- radii): min, max.
 std::pair<Vec3, Vec3> sphere_bounds(const Particles& p);
 

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cerrno>
 #include <cstring>
@@ -81,7 +82,10 @@ class Writer {
     if (dims.empty()) dims = {v.size()};
     array(name, H5T_NATIVE_INT64, v.data(), dims, nullptr);
   }
-  void int32s(const char* name, const std::vector<int>& v) { array(name, H5T_NATIVE_INT, v.data(), {v.size()}, nullptr); }
+  void int32s(const char* name, const std::vector<int>& v, std::vector<hsize_t> dims = {}) {
+    if (dims.empty()) dims = {v.size()};
+    array(name, H5T_NATIVE_INT, v.data(), dims, nullptr);
+  }
   void uint8s(const char* name, const std::vector<std::uint8_t>& v) { array(name, H5T_NATIVE_UINT8, v.data(), {v.size()}, nullptr); }
   void scalar(const char* name, double v, const char* units) { array(name, H5T_NATIVE_DOUBLE, &v, {1}, units); }
   void scalar(const char* name, std::int64_t v) { array(name, H5T_NATIVE_INT64, &v, {1}, nullptr); }
@@ -264,7 +268,7 @@ class Reader {
   }
   std::vector<double> doubles(const char* name, long n = -1) { return values<double>(name, H5T_NATIVE_DOUBLE, n); }
   std::vector<std::int64_t> int64s(const char* name, long n = -1, long cols = 0) { return values<std::int64_t>(name, H5T_NATIVE_INT64, n, cols); }
-  std::vector<int> int32s(const char* name, long n = -1) { return values<int>(name, H5T_NATIVE_INT, n); }
+  std::vector<int> int32s(const char* name, long n = -1, long cols = 0) { return values<int>(name, H5T_NATIVE_INT, n, cols); }
   std::vector<std::uint8_t> uint8s(const char* name, long n = -1) { return values<std::uint8_t>(name, H5T_NATIVE_UINT8, n); }
   std::vector<Vec3> vec3s(const char* name, long n = -1) {
     const std::vector<double> flat = values<double>(name, H5T_NATIVE_DOUBLE, n, 3);
@@ -342,6 +346,10 @@ void write_all(Writer& w, const Simulation& sim, const CheckpointMeta& meta) {
   w.vec3s("/state/gravity", {sim.params.gravity}, "m/s^2");
   w.scalar("/state/alpha_r", sim.params.alpha_r, "1/s");
   w.scalar("/state/alpha_theta", sim.params.alpha_theta, "1/s");
+  const PeriodicBox& box = sim.periodic;
+  w.int32s("/state/periodic", {box.axis[0], box.axis[1], box.axis[2]});
+  w.vec3s("/state/periodic_lo", {box.lo}, "m");
+  w.vec3s("/state/periodic_hi", {box.hi}, "m");
 
   w.group("/run");
   w.strings("/run/stage", {meta.run.stage});
@@ -358,9 +366,16 @@ void write_all(Writer& w, const Simulation& sim, const CheckpointMeta& meta) {
   w.vec3s("/particles/velocity", p.v, "m/s");
   w.vec3s("/particles/angular_velocity", p.w, "rad/s");
   w.vec3s("/particles/reference_position", p.x_ref, "m");
+  {
+    std::vector<int> image(3 * p.size());
+    for (std::size_t k = 0; k < p.size(); ++k)
+      for (int a = 0; a < 3; ++a) image[3 * k + a] = p.image[k][a];
+    w.int32s("/particles/image", image, {p.size(), 3});
+  }
   w.doubles("/particles/radius", p.radius, "m");
   w.doubles("/particles/mass", p.mass, "kg");
   w.int32s("/particles/material", p.material);
+  w.uint8s("/particles/fixed", p.fixed);
 
   const std::vector<Material>& mats = sim.materials.materials();
   auto field = [&](auto get) {
@@ -498,6 +513,20 @@ void read_checkpoint(const std::string& path, Simulation& sim, CheckpointMeta& m
   sim.params.gravity = r.vec3s("/state/gravity", 1)[0];
   sim.params.alpha_r = r.scalar("/state/alpha_r");
   sim.params.alpha_theta = r.scalar("/state/alpha_theta");
+  // Optional: added within schema 2; a file without them had no periodic boundaries.
+  sim.periodic = PeriodicBox{};
+  if (r.has("/state/periodic")) {
+    const std::vector<int> axis = r.int32s("/state/periodic", 3);
+    const Vec3 lo = r.vec3s("/state/periodic_lo", 1)[0], hi = r.vec3s("/state/periodic_hi", 1)[0];
+    for (int a = 0; a < 3; ++a) {
+      if (axis[a] != 0 && axis[a] != 1) throw IoError(path + ": /state/periodic holds neither 0 nor 1 (damaged file)");
+      sim.periodic.axis[a] = axis[a] == 1;
+      if (sim.periodic.axis[a] && !(hi[a] > lo[a] && std::isfinite(hi[a] - lo[a])))
+        throw IoError(path + ": /state/periodic_lo and _hi do not bound a period (damaged file)");
+    }
+    sim.periodic.lo = lo;
+    sim.periodic.hi = hi;
+  }
 
   meta.run.stage = r.strings("/run/stage", 1)[0];
   meta.run.stage_start_step = r.scalar_int("/run/stage_start_step");
@@ -514,9 +543,20 @@ void read_checkpoint(const std::string& path, Simulation& sim, CheckpointMeta& m
   p.v = r.vec3s("/particles/velocity", n);
   p.w = r.vec3s("/particles/angular_velocity", n);
   p.x_ref = r.vec3s("/particles/reference_position", n);
+  p.image.assign(n, Vec3i::Zero());
+  if (r.has("/particles/image")) {  // optional, as /state/periodic
+    const std::vector<int> image = r.int32s("/particles/image", n, 3);
+    for (long k = 0; k < n; ++k) p.image[k] = Vec3i(image[3 * k], image[3 * k + 1], image[3 * k + 2]);
+  }
   p.radius = r.doubles("/particles/radius", n);
   p.mass = r.doubles("/particles/mass", n);
   p.material = r.int32s("/particles/material", n);
+  p.fixed.assign(n, 0);
+  if (r.has("/particles/fixed")) {  // optional, as /state/periodic
+    p.fixed = r.uint8s("/particles/fixed", n);
+    for (std::uint8_t f : p.fixed)
+      if (f > 1) throw IoError(path + ": /particles/fixed holds neither 0 nor 1 (damaged file)");
+  }
 
   const std::vector<std::string> names = r.strings("/materials/name");
   const long nm = static_cast<long>(names.size());

@@ -105,6 +105,11 @@ void write_force_chains_vtp(const std::string& path, const Particles& p, const C
     const Vec3& n = pair ? c.pair_normal[k] : c.wall_normal[w];
     lines[2 * k] = pair ? c.pair_i[k] : c.wall_i[w];
     lines[2 * k + 1] = pair ? c.pair_j[k] : static_cast<long>(p.size() + w);
+    if (pair && c.periodic.any()) {
+      // Across a periodic boundary: to j's image next to i, not across the sample.
+      const Vec3 image = p.x[c.pair_i[k]] + c.branch(p, k);
+      if (image != p.x[c.pair_j[k]]) lines[2 * k + 1] = static_cast<long>(points.size()), points.push_back(image);
+    }
     const double normal = -f.dot(n);  // the force on the first end is -f_n n for a push
     mag.values[k] = f.norm();
     fn.values[k] = normal;

@@ -249,6 +249,26 @@ void read_simulation(TableReader& top, Scene& sc) {
   s.skin = r.number_or("skin", 0.0, 0, kInf, "m (0 = 0.2 x mean radius)");
   s.max_overlap = r.number_or("max_overlap", s.max_overlap, 0, 2, "(fraction of the smaller radius)", true);
   s.max_energy_gain = r.number_or("max_energy_gain", s.max_energy_gain, 0, kInf, "(fraction of the energy scale; 0 = no check)");
+  s.sort_every = r.integer_or("sort_every", s.sort_every, 0, 1000000000);
+  if (const toml::table* pt = r.subtable("periodic")) {
+    TableReader pr(*pt, r.file(), r.name("periodic"));
+    for (int d = 0; d < 3; ++d) {
+      const std::string axis(1, "xyz"[d]);
+      const toml::node* n = pr.node(axis);
+      if (!n) continue;
+      const toml::array* a = n->as_array();
+      const auto finite = [&](std::size_t k) { return a->get(k)->is_number() && std::isfinite(*a->get(k)->value<double>()); };
+      if (!a || a->size() != 2 || !finite(0) || !finite(1))
+        pr.fail_at(n, axis, "expected [lo, hi] in m: the period along " + axis);
+      const double lo = *a->get(0)->value<double>(), hi = *a->get(1)->value<double>();
+      if (!(hi > lo)) pr.fail_at(n, axis, "hi must exceed lo");
+      s.periodic.axis[d] = true;
+      s.periodic.lo[d] = lo;
+      s.periodic.hi[d] = hi;
+    }
+    pr.finish();
+    if (!s.periodic.any()) r.fail("periodic", "give the period along at least one axis, e.g. { x = [0.0, 0.04] }");
+  }
   r.finish();
 }
 
@@ -613,6 +633,11 @@ void read_generation(TableReader& top, Scene& sc) {
   g.box_min = r.vec3("box_min");
   g.box_max = r.vec3("box_max");
   if (!((g.box_max - g.box_min).array() > 0).all()) r.fail("box_max", "every component of box_max must exceed box_min");
+  const PeriodicBox& period = sc.simulation.periodic;
+  for (int d = 0; d < 3; ++d)
+    if (period.axis[d] && (g.box_min[d] < period.lo[d] || g.box_max[d] > period.hi[d]))
+      r.fail("box_max", std::string("along the periodic axis ") + "xyz"[d] +
+                            " the generation box must lie within simulation.periodic (spheres placed across the boundary could overlap)");
   g.count = static_cast<int>(r.integer("count", 0, 100000000));
   g.radius_min = r.number("radius_min", 0, kInf, "m", true);
   g.radius_max = r.number("radius_max", 0, kInf, "m", true);
@@ -813,10 +838,14 @@ void read_stages(TableReader& top, Scene& sc) {
     for (std::size_t a = 0; a < actions.size(); ++a) {
       TableReader ar(*actions[a], top.file(), r.name(indexed("action", a)));
       ActionSpec act;
-      const std::string type = ar.choice("type", {"remove", "reset_reference", "bond"});
-      if (type == "remove") {
-        act.kind = ActionSpec::Kind::Remove;
+      const std::string type = ar.choice("type", {"remove", "reset_reference", "bond", "fix", "release"});
+      if (type == "remove" || type == "fix") {
+        act.kind = type == "remove" ? ActionSpec::Kind::Remove : ActionSpec::Kind::Fix;
         act.region = read_region(ar, "region");
+        act.inside = ar.boolean_or("inside", true);
+      } else if (type == "release") {
+        act.kind = ActionSpec::Kind::Release;
+        if (ar.has("region")) act.region = read_region(ar, "region");
         act.inside = ar.boolean_or("inside", true);
       } else if (type == "bond") {
         act.kind = ActionSpec::Kind::Bond;

@@ -16,6 +16,7 @@
 #include <vtkSmartPointer.h>
 #include <vtkStringArray.h>
 #include <vtkTypeInt32Array.h>
+#include <vtkTypeUInt8Array.h>
 #include <vtkTypeInt64Array.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLImageDataWriter.h>
@@ -195,6 +196,13 @@ void write_particles_vtu(const std::string& path, const Particles& p, const std:
   pd->AddArray(vector_array("velocity", p.v));
   pd->AddArray(vector_array("angular_velocity", p.w));
   pd->AddArray(material);
+  if (std::find(p.fixed.begin(), p.fixed.end(), 1) != p.fixed.end()) {  // only where a stage held some in place
+    auto fixed = vtkSmartPointer<vtkTypeUInt8Array>::New();
+    fixed->SetName("fixed");
+    fixed->SetNumberOfValues(vn);
+    for (vtkIdType i = 0; i < vn; ++i) fixed->SetValue(i, p.fixed[i]);
+    pd->AddArray(fixed);
+  }
   if (displacement != nullptr) {
     pd->AddArray(vector_array("displacement", *displacement));
     auto magnitude = vtkSmartPointer<vtkDoubleArray>::New();

@@ -113,7 +113,7 @@ GridFields coarse_grain(const Particles& p, const ContactForceSet& c, const std:
     Vec3 f;
     if (k < ncp) {
       x0[k] = p.x[c.pair_i[k]];
-      l[k] = p.x[c.pair_j[k]] - x0[k];
+      l[k] = c.branch(p, k);
       f = c.pair_force[k];
     } else {
       const long w = k - ncp;

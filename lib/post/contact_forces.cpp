@@ -4,6 +4,7 @@ namespace dem {
 
 ContactForceSet contact_forces(const Simulation& sim, const std::vector<Vec3>& x) {
   ContactForceSet s;
+  s.periodic = sim.periodic;
   const ContactList& pc = sim.pair_contacts();
   s.pair_i.assign(pc.slot_i.begin(), pc.slot_i.end());
   s.pair_j.assign(pc.slot_j.begin(), pc.slot_j.end());

@@ -22,8 +22,15 @@ struct ContactForceSet {
   std::vector<int> wall_i, wall_index;
   std::vector<Vec3> wall_force, wall_normal, wall_point;
   std::vector<std::uint8_t> wall_bonded;
+  PeriodicBox periodic;  // the state's periodic boundaries, if any
 
   std::size_t pairs() const { return pair_i.size(); }
+  // The branch vector of pair k, from i's centre to j's (to j's nearest image across a periodic
+  // boundary) [m].
+  Vec3 branch(const Particles& p, std::size_t k) const {
+    const Vec3 l = p.x[pair_j[k]] - p.x[pair_i[k]];
+    return periodic.any() ? periodic.nearest(l) : l;
+  }
   std::size_t walls() const { return wall_i.size(); }
 };
 

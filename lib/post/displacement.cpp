@@ -7,7 +7,13 @@
 
 namespace dem {
 
-DisplacementField displacement_by_id(const Particles& ref, const Particles& cur) {
+namespace {
+Vec3 unwrapped(const PeriodicBox& box, const Particles& p, std::size_t k) {
+  return box.any() ? box.unwrapped(p.x[k], p.image[k]) : p.x[k];
+}
+}  // namespace
+
+DisplacementField displacement_by_id(const Particles& ref, const Particles& cur, const PeriodicBox& ref_box, const PeriodicBox& cur_box) {
   std::unordered_map<Index, std::size_t> slot;
   slot.reserve(ref.size());
   for (std::size_t k = 0; k < ref.size(); ++k) slot.emplace(ref.id[k], k);
@@ -19,7 +25,7 @@ DisplacementField displacement_by_id(const Particles& ref, const Particles& cur)
       ++d.added;
       continue;
     }
-    d.u[k] = cur.x[k] - ref.x[it->second];
+    d.u[k] = unwrapped(cur_box, cur, k) - unwrapped(ref_box, ref, it->second);
     ++d.matched;
   }
   d.removed = ref.size() - d.matched;

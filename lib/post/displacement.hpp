@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "state/particles.hpp"
+#include "state/periodic.hpp"
 
 namespace dem {
 
@@ -15,7 +16,10 @@ struct DisplacementField {
   std::size_t added = 0;        // in the current state only
 };
 
-DisplacementField displacement_by_id(const Particles& reference, const Particles& current);
+// Positions are unwrapped across periodic boundaries (each state's own `box`), so a particle that
+// left at one side and re-entered at the other has moved by its path, not by the period.
+DisplacementField displacement_by_id(const Particles& reference, const Particles& current, const PeriodicBox& reference_box = {},
+                                     const PeriodicBox& current_box = {});
 
 // Mean displacement in `bins` slabs along `axis` (0 = x, 1 = y, 2 = z) of the current positions.
 struct ProfileRow {

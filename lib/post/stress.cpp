@@ -46,7 +46,7 @@ ParticleStress particle_stress(const Particles& p, const ContactForceSet& c) {
       const long code = entry[e], k = code / 2;
       if (k < np) {
         const int i = c.pair_i[k], j = c.pair_j[k];
-        const Vec3 l = p.x[j] - p.x[i];  // branch vector, i to j
+        const Vec3 l = c.branch(p, k);  // branch vector, i to j
         const double d = l.norm();
         // Contact point x_i + t l, t = (a_i - a_j + d) / (2 d): the middle of the overlap.
         const double t = d > 0 ? (p.radius[i] - p.radius[j] + d) / (2 * d) : 0.5;

@@ -20,7 +20,7 @@ void FrameWriter::write(const Simulation& sim, const std::vector<double>& times)
   std::vector<std::string> names;
   for (const Material& m : sim.materials.materials()) names.push_back(m.name);
   std::vector<Vec3> disp(sim.particles.size());
-  for (std::size_t i = 0; i < disp.size(); ++i) disp[i] = sim.particles.x[i] - sim.particles.x_ref[i];
+  for (std::size_t i = 0; i < disp.size(); ++i) disp[i] = sim.unwrapped_position(i) - sim.particles.x_ref[i];
   write_particles_vtu(dir_ + "/" + frame_name(stage_, "particles", k, "vtu"), sim.particles, names, &disp);
   write_walls_vtp(dir_ + "/" + frame_name(stage_, "walls", k, "vtp"), sim.walls, sim.time);
   std::vector<PvdEntry> particles, walls;

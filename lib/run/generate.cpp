@@ -113,6 +113,7 @@ void copy_settle(const GenerateOptions& o) {
     throw InputError(m.str());
   }
   tile(sim, scene.copy->nx, scene.copy->ny, scene.copy->nz, period);
+  sim.set_periodic(sim.periodic);  // copies past a periodic boundary re-enter at the other side
   settle_and_write("copy-settle", sim, scene.copy->settle, scene, o, t0);
 }
 

@@ -121,7 +121,7 @@ void post_macro(const PostOptions& o) {
     Simulation ref;
     CheckpointMeta meta;
     read_checkpoint(o.reference, ref, meta);
-    d = displacement_by_id(ref.particles, p);
+    d = displacement_by_id(ref.particles, p, ref.periodic, cur.periodic);
     ref_time = ref.time;
   }
   const std::vector<Vec3>* u = o.reference.empty() ? nullptr : &d.u;

@@ -20,6 +20,7 @@ SimParams params_from(const Scene& scene) {
   p.skin = scene.simulation.skin;
   p.max_overlap = scene.simulation.max_overlap;
   p.max_energy_gain = scene.simulation.max_energy_gain;
+  p.sort_every = scene.simulation.sort_every;
   return p;
 }
 
@@ -28,6 +29,7 @@ Simulation simulation_from_scene(const Scene& scene) {
   sim.materials = MaterialTable(scene.materials, scene.mixing, scene.pairs);
   for (const WallSpec& w : scene.walls) sim.walls.push_back(Wall{w.name, w.material, w.vertices, WallMotion{}});
   sim.params = params_from(scene);
+  sim.periodic = scene.simulation.periodic;
   return sim;
 }
 
@@ -77,6 +79,7 @@ void adopt_scene(Simulation& sim, const Scene& scene, WallPositions positions) {
   sim.set_contacts(sim.pair_contacts(), std::move(wc));
 
   sim.params = params_from(scene);
+  sim.set_periodic(scene.simulation.periodic);
 }
 
 double choose_time_step(const Simulation& sim, const SimulationSpec& spec) {

@@ -33,12 +33,16 @@ void apply_actions(Simulation& sim, const StageSpec& stage) {
   Particles& p = sim.particles;
   for (const ActionSpec& a : stage.actions) {
     if (a.kind == ActionSpec::Kind::ResetReference) {
-      p.x_ref = p.x;
+      for (std::size_t k = 0; k < p.size(); ++k) p.x_ref[k] = sim.unwrapped_position(k);
     } else if (a.kind == ActionSpec::Kind::Bond) {
       const std::size_t n = sim.bond_present_contacts(a.walls);
       std::cerr << "stage " << stage.name << ": bonded " << n << " contacts\n";
+    } else if (a.kind == ActionSpec::Kind::Fix || a.kind == ActionSpec::Kind::Release) {
+      const bool fix = a.kind == ActionSpec::Kind::Fix;
+      const std::size_t n = set_fixed(sim, a.region ? &*a.region : nullptr, a.inside, fix);
+      std::cerr << "stage " << stage.name << ": " << (fix ? "fixed " : "released ") << n << " particles\n";
     } else {
-      const std::size_t removed = remove_particles(sim, a.region, a.inside);
+      const std::size_t removed = remove_particles(sim, *a.region, a.inside);
       std::cerr << "stage " << stage.name << ": removed " << removed << " particles, " << p.size() << " remain\n";
     }
   }

@@ -9,6 +9,7 @@
 #include "core/types.hpp"
 #include "scene/region.hpp"
 #include "state/materials.hpp"
+#include "state/periodic.hpp"
 #include "walls/wall.hpp"
 
 namespace dem {
@@ -22,6 +23,8 @@ struct SimulationSpec {
   double skin = 0;                      // neighbour-list skin [m]; 0 = automatic
   double max_overlap = 0.5;             // unstable-run check: overlap / smaller radius
   double max_energy_gain = 0.5;         // unstable-run check: energy created / energy scale; 0 = off
+  PeriodicBox periodic;                 // [simulation.periodic]: none by default
+  long sort_every = 0;                   // storage re-sort cadence [steps]; 0 = never (SimParams::sort_every)
 };
 
 struct WallSpec {
@@ -79,10 +82,10 @@ struct CompactSpec {
 };
 
 struct ActionSpec {
-  enum class Kind { Remove, ResetReference, Bond };
+  enum class Kind { Remove, ResetReference, Bond, Fix, Release };
   Kind kind = Kind::Remove;
-  Region region;        // Remove
-  bool inside = true;   // Remove: particles inside (true) or outside (false) the region
+  std::optional<Region> region;  // Remove, Fix (required); Release (none: every particle)
+  bool inside = true;   // Remove, Fix, Release: particles inside (true) or outside (false) the region
   bool walls = false;   // Bond: also bond the particles touching walls
 };
 

@@ -4,14 +4,31 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
+
+#include "core/error.hpp"
 
 namespace dem {
 
+namespace {
+// Appends each thread's list to `out`, in thread order, and frees them: kept, they would double
+// the memory of the found pairs at every rebuild.
+void join_and_release(std::vector<std::vector<FoundContact>>& parts, std::vector<FoundContact>& out) {
+  std::size_t n = out.size();
+  for (const std::vector<FoundContact>& part : parts) n += part.size();
+  out.reserve(n);
+  for (std::vector<FoundContact>& part : parts) {
+    out.insert(out.end(), part.begin(), part.end());
+    std::vector<FoundContact>().swap(part);
+  }
+}
+}  // namespace
+
 long LinkedCells::cell_coord(double x, int d) const {
-  return std::clamp(static_cast<long>(std::floor((x - lo_[d]) / edge_)), 0L, dims_[d] - 1);
+  return std::clamp(static_cast<long>(std::floor((x - lo_[d]) / edge_[d])), 0L, dims_[d] - 1);
 }
 
-void LinkedCells::bin(const Particles& p, double margin) {
+void LinkedCells::bin(const Particles& p, const PeriodicBox& box, double margin) {
   const int n = static_cast<int>(p.size());
   Vec3 lo = n ? p.x[0] : Vec3::Zero(), hi = lo;
   double rmax = 0;
@@ -21,21 +38,33 @@ void LinkedCells::bin(const Particles& p, double margin) {
     rmax = std::max(rmax, p.radius[k]);
   }
   // Cell edge >= 2 Rmax (+ margin) (eq. 3.1); widened if needed so the grid has at most ~2N + 27 cells,
-  // which bounds memory when a particle flies far away.
+  // which bounds memory when a particle flies far away. A period holds a whole number of cells.
   double edge = std::max(2 * rmax + margin, 1e-300);
-  const Vec3 span = hi - lo;
   long* dims = dims_;
   for (;;) {
     long total = 1;
     for (int d = 0; d < 3; ++d) {
-      dims[d] = std::max(1L, static_cast<long>(std::floor(span[d] / edge)) + 1);
+      if (box.axis[d]) {
+        dims[d] = std::max(1L, static_cast<long>(std::floor(box.length(d) / edge)));
+        lo_[d] = box.lo[d];
+        edge_[d] = box.length(d) / dims[d];
+      } else {
+        dims[d] = std::max(1L, static_cast<long>(std::floor((hi[d] - lo[d]) / edge)) + 1);
+        lo_[d] = lo[d];
+        edge_[d] = edge;
+      }
       total *= dims[d];
     }
     if (total <= 2L * n + 27) break;
     edge *= 1.26;
   }
-  lo_ = lo;
-  edge_ = edge;
+  for (int d = 0; d < 3; ++d)
+    if (box.axis[d] && dims[d] < 3) {
+      std::ostringstream m;
+      m << "periodic boundaries: the period along " << "xyz"[d] << " (" << box.length(d) << " m) must hold at least 3 search cells of "
+        << 2 * rmax + margin << " m (the largest diameter plus the neighbour-list skin and bond reach): widen the period";
+      throw InputError(m.str());
+    }
   rmax_ = rmax;
   head_.assign(dims[0] * dims[1] * dims[2], -1);
   next_.resize(n);
@@ -47,11 +76,13 @@ void LinkedCells::bin(const Particles& p, double margin) {
   }
 }
 
-void LinkedCells::find_near_pairs(const Particles& p, std::vector<FoundContact>& out, double margin) {
-  bin(p, margin);
+void LinkedCells::find_near_pairs(const Particles& p, const PeriodicBox& box, std::vector<FoundContact>& out, double margin) {
+  bin(p, box, margin);
   const long* dims = dims_;
   const long ncell = dims[0] * dims[1] * dims[2];
-  // Half of the neighbour shell: the 13 cells "after" the current one, plus the cell itself.
+  const bool periodic = box.any();
+  // Half of the neighbour shell: the 13 cells "after" the current one, plus the cell itself. With
+  // at least 3 cells along a periodic axis, each pair of cells is still visited once.
   static constexpr int kHalf[13][3] = {{1, 0, 0},  {-1, 1, 0}, {0, 1, 0},  {1, 1, 0},   {-1, -1, 1},
                                        {0, -1, 1}, {1, -1, 1}, {-1, 0, 1}, {0, 0, 1},   {1, 0, 1},
                                        {-1, 1, 1}, {0, 1, 1},  {1, 1, 1}};
@@ -64,12 +95,18 @@ void LinkedCells::find_near_pairs(const Particles& p, std::vector<FoundContact>&
     std::vector<FoundContact>& mine = per_thread_[omp_get_thread_num()];
     mine.clear();
     auto test = [&](int a, int b) {
+      if (p.fixed[a] && p.fixed[b]) return;  // two held particles never interact
       const double r = p.radius[a] + p.radius[b];
-      const double d2 = (p.x[a] - p.x[b]).squaredNorm();
+      const double d2 = (periodic ? box.nearest(p.x[a] - p.x[b]) : Vec3(p.x[a] - p.x[b])).squaredNorm();
       if (d2 < (r + margin) * (r + margin)) {
         if (p.id[a] < p.id[b]) mine.push_back({p.id[a], p.id[b], a, b});
         else mine.push_back({p.id[b], p.id[a], b, a});
       }
+    };
+    // A neighbour cell's coordinate along axis d, wrapped around a period; -1 when off the grid.
+    auto along = [&](long c, int d) {
+      if (c >= 0 && c < dims[d]) return c;
+      return box.axis[d] ? (c + dims[d]) % dims[d] : -1L;
     };
 #pragma omp for schedule(dynamic, 64)
     for (long c = 0; c < ncell; ++c) {
@@ -77,14 +114,14 @@ void LinkedCells::find_near_pairs(const Particles& p, std::vector<FoundContact>&
       for (int a = head_[c]; a >= 0; a = next_[a]) {
         for (int b = next_[a]; b >= 0; b = next_[b]) test(a, b);
         for (const auto& o : kHalf) {
-          const long x = cx + o[0], y = cy + o[1], z = cz + o[2];
-          if (x < 0 || y < 0 || z < 0 || x >= dims[0] || y >= dims[1] || z >= dims[2]) continue;
+          const long x = along(cx + o[0], 0), y = along(cy + o[1], 1), z = along(cz + o[2], 2);
+          if (x < 0 || y < 0 || z < 0) continue;
           for (int b = head_[(z * dims[1] + y) * dims[0] + x]; b >= 0; b = next_[b]) test(a, b);
         }
       }
     }
   }
-  for (const std::vector<FoundContact>& part : per_thread_) out.insert(out.end(), part.begin(), part.end());
+  join_and_release(per_thread_, out);
 }
 
 void LinkedCells::find_near_walls(const Particles& p, const std::vector<WallGeometry>& walls, std::vector<FoundContact>& out,
@@ -109,7 +146,7 @@ void LinkedCells::find_near_walls(const Particles& p, const std::vector<WallGeom
       bool outside = false;
       for (int d = 0; d < 3; ++d) {
         // Cells past the grid's last one hold nothing beyond it: an element far away is skipped.
-        outside = outside || bhi[d] < lo_[d] || blo[d] > lo_[d] + dims_[d] * edge_;
+        outside = outside || bhi[d] < lo_[d] || blo[d] > lo_[d] + dims_[d] * edge_[d];
         c0[d] = cell_coord(blo[d], d);
         c1[d] = cell_coord(bhi[d], d);
       }
@@ -124,7 +161,7 @@ void LinkedCells::find_near_walls(const Particles& p, const std::vector<WallGeom
             }
     }
   }
-  for (const std::vector<FoundContact>& part : per_thread_) out.insert(out.end(), part.begin(), part.end());
+  join_and_release(per_thread_, out);
 }
 
 }  // namespace dem

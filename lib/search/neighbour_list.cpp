@@ -6,17 +6,22 @@
 
 namespace dem {
 
-bool NeighbourList::needs_rebuild(const Particles& p, const std::vector<WallGeometry>& walls, double margin, double skin) const {
-  if (!valid_ || margin != margin_build_ || skin != skin_build_ || p.size() != x_build_.size() || 4 * walls.size() != wall_build_.size())
+bool NeighbourList::needs_rebuild(const Particles& p, const PeriodicBox& box, const std::vector<WallGeometry>& walls, double margin,
+                                  double skin) const {
+  if (!valid_ || margin != margin_build_ || skin != skin_build_ || !(box == box_build_) || p.size() != x_build_.size() ||
+      4 * walls.size() != wall_build_.size())
     return true;
   // Two particles approach by at most twice the largest displacement, a particle and a wall by the
   // particle's displacement plus the wall's (a planar polygon moves no further than its vertices).
+  // Across a periodic boundary the displacement is the nearest image's.
   double dp2 = 0;
   bool same_ids = true;
   const long n = static_cast<long>(p.size());
+  const bool periodic = box.any();
 #pragma omp parallel for schedule(static) reduction(max : dp2) reduction(&& : same_ids)
   for (long k = 0; k < n; ++k) {
-    dp2 = std::max(dp2, (p.x[k] - x_build_[k]).squaredNorm());
+    const Vec3 moved = p.x[k] - x_build_[k];
+    dp2 = std::max(dp2, (periodic ? box.nearest(moved) : moved).squaredNorm());
     same_ids = same_ids && p.id[k] == id_build_[k];
   }
   if (!same_ids) return true;
@@ -30,9 +35,10 @@ bool NeighbourList::needs_rebuild(const Particles& p, const std::vector<WallGeom
   return 2 * dp > skin || dp + dw > skin;
 }
 
-void NeighbourList::build(const Particles& p, const std::vector<WallGeometry>& walls, double margin, double skin) {
+void NeighbourList::build(const Particles& p, const PeriodicBox& box, const std::vector<WallGeometry>& walls, double margin,
+                          double skin) {
   pairs_.clear();
-  cells_.find_near_pairs(p, pairs_, margin + skin);
+  cells_.find_near_pairs(p, box, pairs_, margin + skin);
   __gnu_parallel::sort(pairs_.begin(), pairs_.end());  // keys are unique: the same order for any thread count
 
   wall_pairs_.clear();
@@ -46,13 +52,15 @@ void NeighbourList::build(const Particles& p, const std::vector<WallGeometry>& w
     for (int v = 0; v < walls[w].count; ++v) wall_build_[4 * w + v] = walls[w].vertices[v];
   margin_build_ = margin;
   skin_build_ = skin;
+  box_build_ = box;
   valid_ = true;
   ++builds_;
 }
 
-bool NeighbourList::update(const Particles& p, const std::vector<WallGeometry>& walls, double margin, double skin) {
-  if (!needs_rebuild(p, walls, margin, skin)) return false;
-  build(p, walls, margin, skin);
+bool NeighbourList::update(const Particles& p, const PeriodicBox& box, const std::vector<WallGeometry>& walls, double margin,
+                           double skin) {
+  if (!needs_rebuild(p, box, walls, margin, skin)) return false;
+  build(p, box, walls, margin, skin);
   return true;
 }
 

@@ -17,18 +17,25 @@ class NeighbourList {
  public:
   // Rebuilds if needed for the current positions; returns true when it did. `margin` is how far
   // apart a bonded pair can still hold (0 without bonds); `skin` the extra distance listed.
-  bool update(const Particles& p, const std::vector<WallGeometry>& walls, double margin, double skin);
+  bool update(const Particles& p, const PeriodicBox& box, const std::vector<WallGeometry>& walls, double margin, double skin);
   // Forget the list (particle storage was reordered): the next update rebuilds it.
   void invalidate() { valid_ = false; }
 
   // Candidates sorted by key, with the storage slots of the last build.
   const std::vector<FoundContact>& pairs() const { return pairs_; }
   const std::vector<FoundContact>& wall_pairs() const { return wall_pairs_; }
+  // Frees pairs() and wall_pairs() once the caller has taken what it needs from them (their
+  // history carried over): at 10^6 particles they are tens of MB, needed only at a rebuild.
+  void release_found() {
+    std::vector<FoundContact>().swap(pairs_);
+    std::vector<FoundContact>().swap(wall_pairs_);
+  }
   std::int64_t builds() const { return builds_; }
 
  private:
-  bool needs_rebuild(const Particles& p, const std::vector<WallGeometry>& walls, double margin, double skin) const;
-  void build(const Particles& p, const std::vector<WallGeometry>& walls, double margin, double skin);
+  bool needs_rebuild(const Particles& p, const PeriodicBox& box, const std::vector<WallGeometry>& walls, double margin,
+                     double skin) const;
+  void build(const Particles& p, const PeriodicBox& box, const std::vector<WallGeometry>& walls, double margin, double skin);
 
   LinkedCells cells_;
   std::vector<FoundContact> pairs_, wall_pairs_;
@@ -36,6 +43,7 @@ class NeighbourList {
   std::vector<Index> id_build_;
   std::vector<Vec3> wall_build_;  // every element's vertices at the last build, 4 per element
   double margin_build_ = -1, skin_build_ = -1;
+  PeriodicBox box_build_;
   bool valid_ = false;
   std::int64_t builds_ = 0;
 };

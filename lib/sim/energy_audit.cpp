@@ -3,14 +3,16 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sim/force_loop.hpp"
+
 namespace dem {
 
-MechanicalEnergy mechanical_energy(const Particles& p, const Vec3& gravity) {
+MechanicalEnergy mechanical_energy(const Particles& p, const Vec3& gravity, const PeriodicBox& box) {
   MechanicalEnergy e;
   for (std::size_t k = 0; k < p.size(); ++k) {
     double rotational;
     e.kinetic += kinetic_energy_of(p, k, rotational);
-    e.potential -= p.mass[k] * gravity.dot(p.x[k]);
+    e.potential -= p.mass[k] * gravity.dot(box.any() ? box.unwrapped(p.x[k], p.image[k]) : p.x[k]);
   }
   return e;
 }
@@ -28,13 +30,14 @@ double spring_energy(const PairParams& q, const Vec3& spring) { return q.kt > 0 
 }  // namespace
 
 double stored_energy_bound(const Particles& p, const MaterialTable& materials, const std::vector<Wall>& walls,
-                           const std::vector<WallGeometry>& geometry, const ContactList& pairs, const ContactList& wall_contacts) {
+                           const std::vector<WallGeometry>& geometry, const PeriodicBox& box, const ContactList& pairs,
+                           const ContactList& wall_contacts) {
   double e = 0;
   for (std::size_t k = 0; k < pairs.size(); ++k) {
     if (!pairs.active[k]) continue;
     const int i = pairs.slot_i[k], j = pairs.slot_j[k];
     const PairParams& q = materials.pair(p.material[i], p.material[j]);
-    const double u = p.radius[i] + p.radius[j] - (p.x[j] - p.x[i]).norm();
+    const double u = p.radius[i] + p.radius[j] - separation(p, box, i, j).norm();
     e += normal_energy_bound(q, u, pairs.bonded[k]) + spring_energy(q, pairs.spring[k]);
   }
   for (std::size_t k = 0; k < wall_contacts.size(); ++k) {

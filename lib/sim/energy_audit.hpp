@@ -15,18 +15,20 @@
 #include "contact/contact_list.hpp"
 #include "state/materials.hpp"
 #include "state/particles.hpp"
+#include "state/periodic.hpp"
 #include "walls/wall.hpp"
 
 namespace dem {
 
-// Kinetic (translational + rotational) and gravitational potential energy -Σ m g·x [J], summed in
+// Kinetic (translational + rotational) and gravitational potential energy -Σ m g·x [J] (x
+// unwrapped across periodic boundaries: flowing down a periodic chute releases energy), summed in
 // storage order (one thread: the same bits for any thread count).
 struct MechanicalEnergy {
   double kinetic = 0;
   double potential = 0;
   double total() const { return kinetic + potential; }
 };
-MechanicalEnergy mechanical_energy(const Particles& p, const Vec3& gravity);
+MechanicalEnergy mechanical_energy(const Particles& p, const Vec3& gravity, const PeriodicBox& box);
 // Kinetic energy of particle k, translational + rotational ½ I ω² (the second part in `rotational`).
 inline double kinetic_energy_of(const Particles& p, std::size_t k, double& rotational) {
   rotational = 0.5 * p.inertia(k) * p.w[k].squaredNorm();
@@ -37,7 +39,8 @@ inline double kinetic_energy_of(const Particles& p, std::size_t k, double& rotat
 // (every law is linear there), F s for a bonded pair held in tension s (the attraction never
 // exceeds the strength F), ½ |f_s|²/kt in the tangential spring.
 double stored_energy_bound(const Particles& p, const MaterialTable& materials, const std::vector<Wall>& walls,
-                           const std::vector<WallGeometry>& geometry, const ContactList& pairs, const ContactList& wall_contacts);
+                           const std::vector<WallGeometry>& geometry, const PeriodicBox& box, const ContactList& pairs,
+                           const ContactList& wall_contacts);
 
 // Power the walls deliver to the particles this step: Σ f·v_wall at the contact point [W], over the
 // active wall contacts (f the force on the particle). Walls at rest are skipped.

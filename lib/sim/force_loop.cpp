@@ -18,7 +18,9 @@ namespace {
 // Each loop also returns the largest overlap relative to the smaller radius (a stability check).
 constexpr long kChunk = 256;  // candidates per pass-1/pass-2 block
 
-template <class Normal>
+// Periodic: distances to the nearest image; Fixed: some particles are held in place. Both are
+// template parameters so that a scene without them pays nothing.
+template <class Normal, bool Periodic, bool Fixed>
 double pair_forces(const ForceLoopInput& in, ContactList& pc) {
   const Particles& p = in.particles;
   const long n = static_cast<long>(pc.size());
@@ -31,22 +33,31 @@ double pair_forces(const ForceLoopInput& in, ContactList& pc) {
     int contact[kChunk];
     int m = 0;
     for (long k = first; k < last; ++k) {
-      pc.active[k] = pair_touching(p, pc.slot_i[k], pc.slot_j[k]) || pc.bonded[k];
+      const int i = pc.slot_i[k], j = pc.slot_j[k];
+      const std::uint8_t was = pc.active[k];
+      pc.active[k] = pair_touching<Periodic>(p, in.periodic, i, j) || pc.bonded[k];
+      if constexpr (Fixed) {
+        // Two held particles never interact (the search skips such pairs too); a bond between
+        // them is dropped, so that nothing depends on when the list was last rebuilt.
+        if (p.fixed[i] && p.fixed[j]) pc.active[k] = 0, pc.bonded[k] = 0;
+      }
       contact[m] = static_cast<int>(k);
       m += pc.active[k];
-      if (!pc.active[k]) pc.spring[k] = Vec3::Zero(), pc.sum[k] = ContactSum();
+      // A candidate that was no contact already holds zeros (ContactList): in a dense bed most
+      // candidates are such, and rewriting their 72 bytes every step cost memory bandwidth.
+      if (!pc.active[k] && was) pc.spring[k] = Vec3::Zero(), pc.sum[k] = ContactSum();
     }
     for (int e = 0; e < m; ++e) {
       const long k = contact[e];
       const int i = pc.slot_i[k], j = pc.slot_j[k];
-      const Vec3 d = p.x[j] - p.x[i];
+      const Vec3 d = separation<Periodic>(p, in.periodic, i, j);
       const double dist = d.norm();
       ContactKinematics c;
       c.n = d * (1.0 / dist);
       c.overlap = p.radius[i] + p.radius[j] - dist;  // eq. 2.11
       c.v_rel = p.v[j] - p.v[i];
       c.w_arm = p.radius[j] * p.w[j] + p.radius[i] * p.w[i];
-      c.m_eff = p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j]);
+      c.m_eff = effective_mass<Fixed>(p, i, j);
       const ContactForce f =
           ContactLaw<Normal>::evaluate(in.materials.pair(p.material[i], p.material[j]), c, in.dt, pc.spring[k], pc.bonded[k]);
       pc.normal[k] = c.n;
@@ -124,7 +135,12 @@ double wall_forces(const ForceLoopInput& in, ContactList& wc) {
 
 template <class Normal>
 double all_forces(const ForceLoopInput& in, ContactList& pairs, ContactList& walls) {
-  return std::max(pair_forces<Normal>(in, pairs), wall_forces<Normal>(in, walls));
+  double worst_pair;
+  if (in.periodic.any())
+    worst_pair = in.any_fixed ? pair_forces<Normal, true, true>(in, pairs) : pair_forces<Normal, true, false>(in, pairs);
+  else
+    worst_pair = in.any_fixed ? pair_forces<Normal, false, true>(in, pairs) : pair_forces<Normal, false, false>(in, pairs);
+  return std::max(worst_pair, wall_forces<Normal>(in, walls));
 }
 
 }  // namespace

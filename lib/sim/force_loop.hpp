@@ -7,6 +7,7 @@
 #include "contact/contact_list.hpp"
 #include "state/materials.hpp"
 #include "state/particles.hpp"
+#include "state/periodic.hpp"
 #include "walls/wall.hpp"
 
 namespace dem {
@@ -20,6 +21,8 @@ struct ForceLoopInput {
   const std::vector<Wall>& walls;
   const std::vector<WallGeometry>& geometry;  // the walls now
   const std::vector<int>& wall_runs;  // where each particle's wall candidates start (+ the end)
+  const PeriodicBox& periodic;
+  bool any_fixed;  // some particle is held in place (Particles::fixed)
   double dt;
 };
 
@@ -29,10 +32,36 @@ enum class ForceVariant { Cundall, Liu, Mendes, Mixed };
 ForceVariant choose_force_variant(const Simulation& sim);
 const char* variant_name(ForceVariant v);
 
+// x_j - x_i, through the nearest image where boundaries are periodic. The force loop is compiled
+// for both cases, so that a scene without periodic boundaries pays nothing for them.
+template <bool Periodic>
+inline Vec3 separation(const Particles& p, const PeriodicBox& box, int i, int j) {
+  if constexpr (Periodic) return box.nearest(p.x[j] - p.x[i]);
+  else return p.x[j] - p.x[i];
+}
+inline Vec3 separation(const Particles& p, const PeriodicBox& box, int i, int j) {
+  return box.any() ? separation<true>(p, box, i, j) : separation<false>(p, box, i, j);
+}
+
+// The mass of eq. 2.26's damping for a pair: m_i m_j / (m_i + m_j), or against a particle held in
+// place (infinitely heavy, as in LAMMPS's fix freeze) the other's mass.
+template <bool Fixed>
+inline double effective_mass(const Particles& p, int i, int j) {
+  if constexpr (Fixed) {
+    if (p.fixed[i]) return p.mass[j];
+    if (p.fixed[j]) return p.mass[i];
+  }
+  return p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j]);
+}
+
 // Whether a candidate touches now: the test that makes it a contact (with a bond, so does holding).
-inline bool pair_touching(const Particles& p, int i, int j) {
+template <bool Periodic>
+inline bool pair_touching(const Particles& p, const PeriodicBox& box, int i, int j) {
   const double r = p.radius[i] + p.radius[j];
-  return (p.x[j] - p.x[i]).squaredNorm() < r * r;
+  return separation<Periodic>(p, box, i, j).squaredNorm() < r * r;
+}
+inline bool pair_touching(const Particles& p, const PeriodicBox& box, int i, int j) {
+  return box.any() ? pair_touching<true>(p, box, i, j) : pair_touching<false>(p, box, i, j);
 }
 inline double wall_gap2(const Particles& p, const WallGeometry& g, int i, Vec3& to_wall) {
   to_wall = closest_point(g, p.x[i]) - p.x[i];

@@ -16,12 +16,13 @@ void Simulation::advance() {
   if (params.sort_every > 0 && step % params.sort_every == 0 && static_cast<long>(particles.size()) >= params.sort_min_particles)
     sort_storage();
   find_contacts();
-  const ForceLoopInput in{particles, materials, walls, wall_geometry_, wall_runs_, dt};
+  const bool any_fixed = std::find(particles.fixed.begin(), particles.fixed.end(), 1) != particles.fixed.end();
+  const ForceLoopInput in{particles, materials, walls, wall_geometry_, wall_runs_, periodic, any_fixed, dt};
   const double worst_overlap = compute_contact_forces(in, choose_force_variant(*this), pairs_, walls_);
   contacts_modified();
   if (worst_overlap > params.max_overlap) report_overlap(worst_overlap);
   if (params.max_energy_gain > 0) audit_energy();
-  integrate();
+  integrate(any_fixed);
   time += dt;
   ++step;
   if (has_bonds_) count_bonds();  // bonds only ever break: stop paying once all are gone
@@ -29,7 +30,7 @@ void Simulation::advance() {
 
 const ContactList& Simulation::pair_contacts() const {
   if (!pair_view_current_) {
-    active_contacts(pairs_, pair_view_);
+    active_contacts(pairs_, pair_by_key_, pair_view_);
     pair_view_current_ = true;
   }
   return pair_view_;
@@ -37,7 +38,7 @@ const ContactList& Simulation::pair_contacts() const {
 
 const ContactList& Simulation::wall_contacts() const {
   if (!wall_view_current_) {
-    active_contacts(walls_, wall_view_);
+    active_contacts(walls_, {}, wall_view_);
     wall_view_current_ = true;
   }
   return wall_view_;
@@ -48,6 +49,7 @@ void Simulation::contacts_modified() { pair_view_current_ = wall_view_current_ =
 void Simulation::set_contacts(ContactList pairs, ContactList walls) {
   pairs_ = std::move(pairs);
   walls_ = std::move(walls);
+  pair_by_key_.clear();  // given in key order
   for (ContactList* c : {&pairs_, &walls_}) {
     c->resize(c->size());  // fields a caller left empty
     std::fill(c->active.begin(), c->active.end(), 1);
@@ -66,9 +68,10 @@ void Simulation::report_overlap(double worst) const {
   std::ostringstream m;
   m << "overlap of " << worst * 100 << " % of the radius (limit simulation.max_overlap = " << params.max_overlap * 100
     << " %) at step " << step << " (t = " << time << " s), ";
-  for (std::size_t k = 0; k < pairs_.size(); ++k) {
+  for (std::size_t r = 0; r < pairs_.size(); ++r) {
+    const int k = key_rank_to_position(pair_by_key_, r);
     const int i = pairs_.slot_i[k], j = pairs_.slot_j[k];
-    const double u = p.radius[i] + p.radius[j] - (p.x[j] - p.x[i]).norm();
+    const double u = p.radius[i] + p.radius[j] - separation(p, periodic, i, j).norm();
     if (pairs_.active[k] && u / std::min(p.radius[i], p.radius[j]) == worst)
       m << "between particles " << p.id[i] << " and " << p.id[j] << ", ";
   }
@@ -89,8 +92,11 @@ std::size_t Simulation::bond_present_contacts(bool walls_too) {
   // The pairs touching now (the test of the force loop) and the contacts holding already.
   const Particles& p = particles;
   std::size_t n = 0;
-  for (std::size_t k = 0; k < pairs_.size(); ++k)
-    if (pair_touching(p, pairs_.slot_i[k], pairs_.slot_j[k]) || pairs_.bonded[k]) pairs_.bonded[k] = pairs_.active[k] = 1, ++n;
+  for (std::size_t k = 0; k < pairs_.size(); ++k) {
+    const int i = pairs_.slot_i[k], j = pairs_.slot_j[k];
+    if (p.fixed[i] && p.fixed[j]) continue;  // two held particles never interact
+    if (pair_touching(p, periodic, i, j) || pairs_.bonded[k]) pairs_.bonded[k] = pairs_.active[k] = 1, ++n;
+  }
   if (walls_too) {
     // Per particle, the touches the force loop counts (select_wall_contacts): where mesh elements
     // meet, one touch seen by two elements is one contact and gets one bond.
@@ -121,6 +127,16 @@ void Simulation::update_wall_geometry() {
   const long nw = static_cast<long>(walls.size());
 #pragma omp parallel for schedule(static) if (nw > 1000)
   for (long w = 0; w < nw; ++w) place_wall(walls[w], time, dt, wall_geometry_[w]);
+}
+
+void Simulation::set_periodic(const PeriodicBox& box) {
+  Particles& p = particles;
+  if (!(box == periodic)) {  // a new period: images of the old one mean nothing in it
+    for (std::size_t k = 0; k < p.size(); ++k) p.x[k] = unwrapped_position(k), p.image[k] = Vec3i::Zero();
+    periodic = box;
+  }
+  for (std::size_t k = 0; k < p.size(); ++k) periodic.wrap_far(p.x[k], p.image[k]);
+  neighbours_.invalidate();
 }
 
 double Simulation::skin() const {
@@ -166,17 +182,22 @@ void Simulation::find_contacts() {
   // Bonded pairs hold in tension until they break: list that much further while bonds exist.
   const double margin = has_bonds_ ? 1.01 * materials.max_break_separation() : 0.0;
   update_wall_geometry();
-  if (!neighbours_.update(particles, wall_geometry_, margin, skin())) return;
+  if (!neighbours_.update(particles, periodic, wall_geometry_, margin, skin())) return;
   // New candidates: carry the history over by key; which pairs touch is decided by the force loop.
-  carry_history(pairs_, neighbours_.pairs(), pair_scratch_);
-  carry_history(walls_, neighbours_.wall_pairs(), wall_scratch_);
+  // Pairs are stored along the particles' storage order (locality when the storage is sorted),
+  // wall candidates in key order (each particle's form one run, in id order).
+  place_by_storage(neighbours_.pairs(), particles.size(), place_count_, pair_place_);
+  carry_history(pairs_, pair_by_key_, neighbours_.pairs(), pair_place_, carry_from_);
+  KeyOrder in_key_order;  // empty
+  carry_history(walls_, in_key_order, neighbours_.wall_pairs(), in_key_order, carry_from_);
+  neighbours_.release_found();  // carried over: free the memory until the next rebuild
   index_contacts_per_particle();
 }
 
 void Simulation::index_contacts_per_particle() {
   // Per-particle lists of candidate entries in a fixed order (pairs by key, then walls), so that
-  // the sums of net_load give the same bits for any thread count. Entry codes: 2k = pair k seen
-  // from i, 2k+1 = seen from j, 2(npc+k) = wall candidate k.
+  // the sums of net_load give the same bits for any thread count and any storage order. Entry
+  // codes: 2k = pair k seen from i, 2k+1 = seen from j, 2(npc+k) = wall candidate k.
   const std::size_t n = particles.size();
   const long npc = static_cast<long>(pairs_.size());
   const long nwc = static_cast<long>(walls_.size());
@@ -186,7 +207,8 @@ void Simulation::index_contacts_per_particle() {
   for (std::size_t k = 0; k < n; ++k) csr_start_[k + 1] += csr_start_[k];
   csr_entry_.resize(csr_start_[n]);
   csr_fill_.assign(csr_start_.begin(), csr_start_.end() - 1);
-  for (long k = 0; k < npc; ++k) {
+  for (long r = 0; r < npc; ++r) {
+    const int k = key_rank_to_position(pair_by_key_, r);
     csr_entry_[csr_fill_[pairs_.slot_i[k]]++] = static_cast<int>(2 * k);
     csr_entry_[csr_fill_[pairs_.slot_j[k]]++] = static_cast<int>(2 * k + 1);
   }
@@ -202,38 +224,48 @@ void Simulation::index_contacts_per_particle() {
 void Simulation::net_load(long i, Vec3& f, Vec3& t) const {
   const Particles& p = particles;
   const long npc = static_cast<long>(pairs_.size());
-  // Mere candidates add exact zeros, which changes no sum as long as no sum is -0: start from +0
-  // (gravity -0 becomes +0), so the candidate set, which depends on when the list was rebuilt,
-  // never changes a bit of the result. Summed in the particle's fixed entry order
-  // (index_contacts_per_particle): the same bits for any thread count.
+  // Mere candidates hold exact zeros (ContactList) and are skipped: adding them would change no
+  // sum as long as no sum is -0, so the candidate set, which depends on when the list was
+  // rebuilt, never changes a bit of the result (start from +0: gravity -0 becomes +0). Summed in
+  // the particle's fixed entry order (index_contacts_per_particle): the same bits for any thread
+  // count. Skipping reads a byte per candidate instead of 48 (most candidates of a dense bed are
+  // not touching).
   f = p.mass[i] * (params.gravity + Vec3::Zero());
   t = Vec3::Zero();
   for (int e = csr_start_[i]; e < csr_start_[i + 1]; ++e) {
     const int code = csr_entry_[e];
     const long k = code / 2;
+    const bool pair = k < npc;
+    if (!(pair ? pairs_.active[k] : walls_.active[k - npc])) continue;
     // Torques, eq. 2.33-2.34: M = a n x f_t for i and j alike (M_j = (a_j / a_i) M_i).
-    const ContactSum& c = k < npc ? pairs_.sum[k] : walls_.sum[k - npc];
+    const ContactSum& c = pair ? pairs_.sum[k] : walls_.sum[k - npc];
     f += (code % 2 == 0) ? c.force : Vec3(-c.force);  // eq. 2.31-2.32
     t += p.radius[i] * c.moment;
   }
 }
 
-void Simulation::integrate() {
+void Simulation::integrate(bool any_fixed) {
   Particles& p = particles;
   // eq. 2.38-2.47: v^{n+1/2} = (a v^{n-1/2} + acc dt) b, a = 1 - alpha dt/2, b = 1/(1 + alpha dt/2).
   const double ar = 1 - params.alpha_r * dt / 2, br = 1 / (1 + params.alpha_r * dt / 2);
   const double at = 1 - params.alpha_theta * dt / 2, bt = 1 / (1 + params.alpha_theta * dt / 2);
   const long n = static_cast<long>(p.size());
+  const bool wrap = periodic.any();
   long bad = -1;
   // One pass: each particle's loads are summed and used at once (no per-particle force arrays to
   // write and read back: this loop is bound by memory traffic at 1e5 particles and more).
 #pragma omp parallel for schedule(static) reduction(max : bad)
   for (long i = 0; i < n; ++i) {
+    if (any_fixed && p.fixed[i]) {  // held in place
+      p.v[i] = p.w[i] = Vec3::Zero();
+      continue;
+    }
     Vec3 force, torque;
     net_load(i, force, torque);
     p.v[i] = (ar * p.v[i] + force * (dt / p.mass[i])) * br;
     p.w[i] = (at * p.w[i] + torque * (dt / p.inertia(i))) * bt;
     p.x[i] += p.v[i] * dt;
+    if (wrap) periodic.wrap(p.x[i], p.image[i]);
     if (!p.x[i].allFinite() || !p.v[i].allFinite() || !p.w[i].allFinite()) bad = std::max(bad, i);
   }
   if (bad >= 0) {
@@ -253,8 +285,8 @@ void Simulation::audit_energy() {
     b.valid = true;
     b.step0 = step;
     b.particles = particles.size();
-    b.start = b.now = mechanical_energy(particles, params.gravity);
-    b.stored0 = stored_energy_bound(particles, materials, walls, wall_geometry_, pairs_, walls_);
+    b.start = b.now = mechanical_energy(particles, params.gravity, periodic);
+    b.stored0 = stored_energy_bound(particles, materials, walls, wall_geometry_, periodic, pairs_, walls_);
     for (std::size_t k = 0; k < particles.size(); ++k) b.potential_scale += particles.mass[k] * params.gravity.norm() * particles.radius[k];
     return;
   }
@@ -262,7 +294,7 @@ void Simulation::audit_energy() {
   b.wall_work += work;
   b.wall_work_abs += std::abs(work);
   if ((step - b.step0) % kEnergyCheckEvery != 0) return;
-  b.now = mechanical_energy(particles, params.gravity);
+  b.now = mechanical_energy(particles, params.gravity, periodic);
   if (b.excess() > params.max_energy_gain * b.scale()) report_energy_gain();
 }
 
@@ -296,7 +328,7 @@ double Simulation::critical_time_step() const {
   return 2 * std::sqrt(mmin / (2 * kmax));  // eq. 2.48 (Hart et al.), without FRAC
 }
 
-double Simulation::kinetic_energy() const { return mechanical_energy(particles, params.gravity).kinetic; }
+double Simulation::kinetic_energy() const { return mechanical_energy(particles, params.gravity, periodic).kinetic; }
 
 // Reads the candidates directly (no compaction: the stress servo calls it every step). key_j (the
 // wall index) is valid even before the first step after a restart, when slots are not: torques,

@@ -9,6 +9,7 @@
 #include "search/neighbour_list.hpp"
 #include "state/materials.hpp"
 #include "state/particles.hpp"
+#include "state/periodic.hpp"
 #include "walls/wall.hpp"
 
 namespace dem {
@@ -44,6 +45,7 @@ class Simulation {
   Particles particles;
   MaterialTable materials;
   std::vector<Wall> walls;
+  PeriodicBox periodic;  // none by default; positions stay inside it (set_periodic)
   SimParams params;
   double time = 0;            // [s]
   double dt = 0;              // [s]
@@ -65,6 +67,15 @@ class Simulation {
   // Returns how many contacts were bonded.
   std::size_t bond_present_contacts(bool walls_too);
   bool has_bonds() const { return has_bonds_; }
+
+  // Periodic boundaries from now on (a box with no periodic axis: none). Every particle is brought
+  // into the period, its image counting the periods crossed (of the new period, when it changes:
+  // unwrapped positions are kept).
+  void set_periodic(const PeriodicBox& box);
+  // Particle k's position as if no periodic boundary had been crossed (x + image L) [m].
+  Vec3 unwrapped_position(std::size_t k) const {
+    return periodic.any() ? periodic.unwrapped(particles.x[k], particles.image[k]) : particles.x[k];
+  }
 
   // Critical time step of eq. 2.48 (without FRAC): 2 sqrt(M_min / (2 K_max)).
   double critical_time_step() const;
@@ -94,14 +105,17 @@ class Simulation {
   void index_contacts_per_particle();
   // The net force and torque on particle i from gravity and its contacts (eq. 2.31-2.34).
   void net_load(long i, Vec3& force, Vec3& torque) const;
-  void integrate();
+  void integrate(bool any_fixed);
 
   bool has_bonds_ = false;
   EnergyBalance energy_;
   NeighbourList neighbours_;
   // Every candidate pair of the neighbour list, with its history; `active` = a contact this step.
   ContactList pairs_, walls_;
-  ContactList pair_scratch_, wall_scratch_;  // working storage of carry_history (each keeps its capacity)
+  KeyOrder pair_by_key_;  // where pairs_ holds its entries in key order (contact/contact_list.hpp)
+  KeyOrder pair_place_;   // working storage of place_by_storage and carry_history
+  std::vector<int> place_count_;
+  std::vector<int> carry_from_;  // working storage of carry_history
   mutable ContactList pair_view_, wall_view_;  // pair_contacts(), wall_contacts()
   mutable bool pair_view_current_ = false, wall_view_current_ = false;
   void contacts_modified();  // the views must be compacted again

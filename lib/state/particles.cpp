@@ -26,9 +26,11 @@ void Particles::reorder(const std::vector<std::size_t>& order) {
   gather(v, order);
   gather(w, order);
   gather(x_ref, order);
+  gather(image, order);
   gather(radius, order);
   gather(mass, order);
   gather(material, order);
+  gather(fixed, order);
 }
 
 void Particles::keep_only(const std::vector<bool>& keep) {
@@ -37,9 +39,11 @@ void Particles::keep_only(const std::vector<bool>& keep) {
   compact(v, keep);
   compact(w, keep);
   compact(x_ref, keep);
+  compact(image, keep);
   compact(radius, keep);
   compact(mass, keep);
   compact(material, keep);
+  compact(fixed, keep);
 }
 
 Index Particles::max_id() const { return id.empty() ? -1 : *std::max_element(id.begin(), id.end()); }

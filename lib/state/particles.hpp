@@ -2,6 +2,7 @@
 // Particles as structure-of-arrays: one contiguous array per property, a stable id apart from the
 // storage slot (SPEC §2: rigid spheres with 6 degrees of freedom).
 #include <cstddef>
+#include <cstdint>
 #include <numbers>
 #include <vector>
 
@@ -17,10 +18,14 @@ struct Particles {
   std::vector<Vec3> x;      // position at step n [m]
   std::vector<Vec3> v;      // velocity at step n-1/2 [m/s] (central differences, eq. 2.38)
   std::vector<Vec3> w;      // angular velocity at step n-1/2 [rad/s]
-  std::vector<Vec3> x_ref;  // reference position for displacement fields [m]
+  std::vector<Vec3> x_ref;  // reference position for displacement fields [m] (unwrapped)
+  std::vector<Vec3i> image; // periods crossed along each axis (periodic boundaries, state/periodic.hpp)
   std::vector<double> radius;  // [m]
   std::vector<double> mass;    // [kg], m = rho 4/3 pi a^3
   std::vector<int> material;   // index into the material table
+  // 1: held in place (as LAMMPS's fix freeze: a rough base of spheres, a fixed boundary layer):
+  // never moves, and acts on others as if infinitely heavy; two held particles do not interact.
+  std::vector<std::uint8_t> fixed;
 
   std::size_t size() const { return id.size(); }
 
@@ -30,9 +35,11 @@ struct Particles {
     v.push_back(Vec3::Zero());
     w.push_back(Vec3::Zero());
     x_ref.push_back(pos);
+    image.push_back(Vec3i::Zero());
     radius.push_back(a);
     mass.push_back(sphere_mass(density, a));
     material.push_back(mat);
+    fixed.push_back(0);
   }
 
   double inertia(std::size_t k) const { return 0.4 * mass[k] * radius[k] * radius[k]; }  // I = 2/5 m a^2

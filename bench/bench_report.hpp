@@ -1,0 +1,34 @@
+#pragma once
+// What the step benchmarks (settle_bench, chute_bench) print for a timed run: one line that
+// bench/run_peer_bench.sh parses.
+#include <sys/resource.h>
+
+#include <cstdio>
+
+#include "sim/simulation.hpp"
+
+namespace dem::bench {
+
+inline long peak_rss_kb() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_maxrss;
+}
+
+inline double rotational_energy(const Simulation& sim) {
+  double e = 0;
+  for (std::size_t i = 0; i < sim.particles.size(); ++i) e += 0.5 * sim.particles.inertia(i) * sim.particles.w[i].squaredNorm();
+  return e;
+}
+
+// walls, particles, steps, threads, loop seconds, particle-steps per second, contacts, kinetic
+// energies, peak resident memory (and its increase since `rss_before`).
+inline void print_run(const Simulation& sim, long steps, int threads, double loop, long rss_before) {
+  const long rss = peak_rss_kb();
+  std::printf("walls %zu particles %zu steps %ld threads %d loop_s %.4f psps %.4g contacts %zu ke %.10g rke %.10g rss_kb %ld rss_increase_kb %ld\n",
+              sim.walls.size(), sim.particles.size(), steps, threads, loop, sim.particles.size() * static_cast<double>(steps) / loop,
+              sim.pair_contacts().size() + sim.wall_contacts().size(), sim.kinetic_energy() - rotational_energy(sim),
+              rotational_energy(sim), rss, rss - rss_before);
+}
+
+}  // namespace dem::bench
