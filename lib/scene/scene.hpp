@@ -24,7 +24,7 @@ struct SimulationSpec {
   double max_overlap = 0.5;             // unstable-run check: overlap / smaller radius
   double max_energy_gain = 0.5;         // unstable-run check: energy created / energy scale; 0 = off
   PeriodicBox periodic;                 // [simulation.periodic]: none by default
-  long sort_every = 0;                   // storage re-sort cadence [steps]; 0 = never (SimParams::sort_every)
+  long sort_every = 1000;                // storage re-sort cadence [steps]; 0 = never (SimParams::sort_every)
 };
 
 struct WallSpec {

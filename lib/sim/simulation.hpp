@@ -26,10 +26,11 @@ struct SimParams {
   // Storage order: every sort_every steps (at steps that are multiples of it, so that a resumed run
   // sorts where an uninterrupted one does), samples of at least sort_min_particles are put in the
   // order of a grid of cells, so that neighbours sit close in memory. Speed only: no result
-  // depends on the storage order (ids, not slots, order every sum). 0 = never, the default: the
-  // contact lists stay in id order, so sorting helps where ids follow space (a lattice) and slows
-  // samples whose ids are random in space (random placement: bench/results/locality.md).
-  long sort_every = 0;
+  // depends on the storage order (ids, not slots, order every sum). 0 = never. The pair lists
+  // follow the storage order, so both the particle and the contact loops become local: a
+  // 100,000-sphere gen-primary settle to t = 0.4 s took 134 s sorted every 1,000 steps against 204 s
+  // never sorted (bench/results/locality.md).
+  long sort_every = 1000;
   long sort_min_particles = 10000;
 };
 
