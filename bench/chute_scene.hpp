@@ -16,7 +16,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "settle_scene.hpp"  // restitution_of
+#include "settle_scene.hpp"  // restitution_of, write_lammps_velocities
 #include "sim/simulation.hpp"
 
 namespace dem::bench {
@@ -88,9 +88,7 @@ inline void write_chute_lammps_data(const Simulation& sim, const std::string& pa
   for (std::size_t k = 0; k < p.size(); ++k)
     std::fprintf(f, "%lld %d 1 1 %.17g %.17g %.17g\n", static_cast<long long>(p.id[k] + 1), p.fixed[k] ? 2 : 1, p.x[k].x(),
                  p.x[k].y(), p.x[k].z());
-  std::fprintf(f, "\nVelocities\n\n");
-  for (std::size_t k = 0; k < p.size(); ++k)
-    std::fprintf(f, "%lld %.17g %.17g %.17g 0 0 0\n", static_cast<long long>(p.id[k] + 1), p.v[k].x(), p.v[k].y(), p.v[k].z());
+  write_lammps_velocities(f, p);
   std::fclose(f);
 }
 

@@ -93,6 +93,13 @@ inline Simulation settle_scene(const LatticeSize& size, double eta = 0.5, bool w
   return sim;
 }
 
+// The Velocities section of a LAMMPS data file (ids from 1, no spin).
+inline void write_lammps_velocities(std::FILE* f, const Particles& p) {
+  std::fprintf(f, "\nVelocities\n\n");
+  for (std::size_t k = 0; k < p.size(); ++k)
+    std::fprintf(f, "%lld %.17g %.17g %.17g 0 0 0\n", static_cast<long long>(p.id[k] + 1), p.v[k].x(), p.v[k].y(), p.v[k].z());
+}
+
 // The same particles as a LAMMPS/LIGGGHTS data file (atom_style sphere / granular), ids from 1.
 inline void write_lammps_data(const Simulation& sim, const LatticeSize& size, const std::string& path) {
   std::FILE* f = std::fopen(path.c_str(), "w");
@@ -104,9 +111,7 @@ inline void write_lammps_data(const Simulation& sim, const LatticeSize& size, co
   for (std::size_t k = 0; k < p.size(); ++k)
     std::fprintf(f, "%lld 1 %.17g %.17g %.17g %.17g %.17g\n", static_cast<long long>(p.id[k] + 1), 2 * p.radius[k], kDensity, p.x[k].x(),
                  p.x[k].y(), p.x[k].z());
-  std::fprintf(f, "\nVelocities\n\n");
-  for (std::size_t k = 0; k < p.size(); ++k)
-    std::fprintf(f, "%lld %.17g %.17g %.17g 0 0 0\n", static_cast<long long>(p.id[k] + 1), p.v[k].x(), p.v[k].y(), p.v[k].z());
+  write_lammps_velocities(f, p);
   std::fclose(f);
 }
 

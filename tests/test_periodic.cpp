@@ -30,6 +30,20 @@ PeriodicBox periodic_x(double length) {
   return box;
 }
 
+// Runs one binary collision to its end at FRAC = 0.001 (as tests/test_contact_physics.cpp: eta to
+// 1 %). Returns whether the spheres touched.
+bool collide(Simulation& sim) {
+  sim.dt = 0.001 * sim.critical_time_step();
+  bool touched = false;
+  for (int s = 0; s < 200000; ++s) {
+    sim.advance();
+    const bool in_contact = sim.pair_contacts().size() > 0;
+    touched = touched || in_contact;
+    if (touched && !in_contact) break;
+  }
+  return touched;
+}
+
 // Two equal spheres approaching head-on along x at +-v0, their midpoint at x = centre; runs until
 // they part. Returns the velocities after.
 std::pair<Vec3, Vec3> collide_along_x(double centre, double eta) {
@@ -42,15 +56,7 @@ std::pair<Vec3, Vec3> collide_along_x(double centre, double eta) {
   sim.particles.v[0] = Vec3(v0, 0, 0);
   sim.particles.v[1] = Vec3(-v0, 0, 0);
   sim.set_periodic(periodic_x(L));
-  sim.dt = 0.001 * sim.critical_time_step();  // as tests/test_contact_physics.cpp: eta to 1 %
-  bool touched = false;
-  for (int s = 0; s < 200000; ++s) {
-    sim.advance();
-    const bool in_contact = sim.pair_contacts().size() > 0;
-    touched = touched || in_contact;
-    if (touched && !in_contact) break;
-  }
-  EXPECT_TRUE(touched);
+  EXPECT_TRUE(collide(sim));
   return {sim.particles.v[0], sim.particles.v[1]};
 }
 
@@ -77,15 +83,7 @@ TEST(Fixed, BounceOnAHeldSphereHasRestitutionEta) {
     sim.particles.fixed[0] = 1;
     sim.particles.add(1, Vec3(0, 0, 2.2 * a), a, 2500, 0);
     sim.particles.v[1] = Vec3(0, 0, -v0);
-    sim.dt = 0.001 * sim.critical_time_step();
-    bool touched = false;
-    for (int s = 0; s < 200000; ++s) {
-      sim.advance();
-      const bool in_contact = sim.pair_contacts().size() > 0;
-      touched = touched || in_contact;
-      if (touched && !in_contact) break;
-    }
-    ASSERT_TRUE(touched);
+    ASSERT_TRUE(collide(sim));
     // m* = m of the moving sphere (the held one is infinitely heavy): it rebounds at eta v0,
     // within 1 % as against a wall (tests/test_contact_physics.cpp).
     EXPECT_NEAR(sim.particles.v[1].z(), eta * v0, 0.01 * eta * v0) << "eta " << eta;

@@ -102,23 +102,28 @@ TEST(LinkedCells, PeriodicMatchesBruteForceBetweenNearestImages) {
   }
 }
 
-// Along a trajectory (the neighbour list is reused between rebuilds, with a skin), the contacts of
-// every step are exactly the overlapping pairs and particle-wall overlaps an O(N^2) check finds,
-// with a polydisperse cloud (size ratio 10) moving fast in a box whose lid moves down.
-TEST(NeighbourList, ContactsEqualBruteForceEveryStep) {
-  std::mt19937_64 rng(5);
-  std::uniform_real_distribution<double> u(0, 1);
+// A box of side L between a floor and a lid (square quads at z = 0 and z = L), one soft material.
+Simulation box_between_plates(double L) {
   Simulation sim;
   Material m;
   m.name = "m";
   m.kn = m.kt = 1e3;
   m.restitution = 0.9;
   sim.materials = MaterialTable({m}, {});
-  const double L = 0.05;
   sim.walls.push_back(Wall{"floor", 0, {Vec3(0, 0, 0), Vec3(L, 0, 0), Vec3(L, L, 0), Vec3(0, L, 0)}, {}});
-  Wall lid{"lid", 0, {Vec3(0, 0, L), Vec3(L, 0, L), Vec3(L, L, L), Vec3(0, L, L)}, {}};
-  lid.motion.velocity = Vec3(0, 0, -0.2);
-  sim.walls.push_back(lid);
+  sim.walls.push_back(Wall{"lid", 0, {Vec3(0, 0, L), Vec3(L, 0, L), Vec3(L, L, L), Vec3(0, L, L)}, {}});
+  return sim;
+}
+
+// Along a trajectory (the neighbour list is reused between rebuilds, with a skin), the contacts of
+// every step are exactly the overlapping pairs and particle-wall overlaps an O(N^2) check finds,
+// with a polydisperse cloud (size ratio 10) moving fast in a box whose lid moves down.
+TEST(NeighbourList, ContactsEqualBruteForceEveryStep) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  const double L = 0.05;
+  Simulation sim = box_between_plates(L);
+  sim.walls[1].motion.velocity = Vec3(0, 0, -0.2);
   for (int k = 0; k < 300; ++k) {
     const double a = 0.0005 + 0.0045 * u(rng);
     sim.particles.add(k, Vec3(a + (L - 2 * a) * u(rng), a + (L - 2 * a) * u(rng), a + (L - 2 * a) * u(rng)), a, 2500, 0);
@@ -165,15 +170,8 @@ TEST(NeighbourList, ContactsEqualBruteForceEveryStep) {
 TEST(NeighbourList, PeriodicContactsEqualBruteForceEveryStep) {
   std::mt19937_64 rng(6);
   std::uniform_real_distribution<double> u(0, 1);
-  Simulation sim;
-  Material m;
-  m.name = "m";
-  m.kn = m.kt = 1e3;
-  m.restitution = 0.9;
-  sim.materials = MaterialTable({m}, {});
   const double L = 0.05;
-  sim.walls.push_back(Wall{"floor", 0, {Vec3(0, 0, 0), Vec3(L, 0, 0), Vec3(L, L, 0), Vec3(0, L, 0)}, {}});
-  sim.walls.push_back(Wall{"lid", 0, {Vec3(0, 0, L), Vec3(L, 0, L), Vec3(L, L, L), Vec3(0, L, L)}, {}});
+  Simulation sim = box_between_plates(L);
   PeriodicBox box;
   box.axis = {true, true, false};
   box.hi = Vec3(L, L, 0);
