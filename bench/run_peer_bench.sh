@@ -5,7 +5,7 @@
 # Writes bench/results/peers_runs.csv (every run) and bench/results/peers.md (medians and ratios).
 # Usage: bash bench/run_peer_bench.sh [REPS] [SCENES]   (from anywhere; about 40 minutes on 2 cores
 #   with REPS=3; SCENES, default "settle:10000:20000 settle:100000:2500 chute:32000:6000",
-#   each SCENE:PARTICLES:STEPS)
+#   each SCENE:PARTICLES:STEPS; runs of other scenes already in peers_runs.csv are kept)
 # Needs: apt-get install lammps liggghts openmpi-bin time (done here when run as root).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -26,7 +26,8 @@ trap 'rm -rf "$work"' EXIT
 cp bench/peers/in.settle.* bench/peers/in.chute.* "$work/"
 csv=bench/results/peers_runs.csv
 mkdir -p bench/results
-echo "scene,code,procs,particles,steps,loop_s,psps,peak_rss_kb,rep" > "$csv.tmp"
+echo "scene,code,procs,particles,steps,loop_s,psps,peak_rss_kb,rep,date" > "$csv.tmp"
+today=$(date -u +%Y-%m-%d)
 
 # One run: prints "loop_seconds peak_rss_kb" (peak RSS of the largest process).
 run_one() {  # code procs scene N steps
@@ -58,11 +59,19 @@ for spec in $scenes; do
       for code in dem lammps liggghts; do
         read -r loop rss < <(run_one "$code" "$np" "$scene" "$n" "$steps")
         psps=$(awk -v n="$n" -v s="$steps" -v t="$loop" 'BEGIN {printf "%.4g", n * s / t}')
-        echo "$label,$code,$np,$n,$steps,$loop,$psps,$rss,$rep" | tee -a "$csv.tmp"
+        echo "$label,$code,$np,$n,$steps,$loop,$psps,$rss,$rep,$today" | tee -a "$csv.tmp"
       done
     done
   done
 done
+# Runs of scenes not measured now are kept from the previous file, with their date (peers.md shows
+# it per scene: compare codes within one scene's session only).
+measured=$(tail -n +2 "$csv.tmp" | cut -d, -f1 | sort -u)
+if [ -f "$csv" ]; then
+  tail -n +2 "$csv" | while IFS= read -r row; do
+    grep -qxF "${row%%,*}" <<< "$measured" || echo "$row"
+  done >> "$csv.tmp"
+fi
 mv "$csv.tmp" "$csv"
 /usr/bin/python3 bench/summarize_peers.py "$csv" > bench/results/peers.md.tmp
 mv bench/results/peers.md.tmp bench/results/peers.md
