@@ -3,6 +3,7 @@
 // bench/run_peer_bench.sh parses.
 #include <sys/resource.h>
 
+#include <chrono>
 #include <cstdio>
 
 #include "sim/simulation.hpp"
@@ -29,6 +30,15 @@ inline void print_run(const Simulation& sim, long steps, int threads, double loo
               sim.walls.size(), sim.particles.size(), steps, threads, loop, sim.particles.size() * static_cast<double>(steps) / loop,
               sim.pair_contacts().size() + sim.wall_contacts().size(), sim.kinetic_energy() - rotational_energy(sim),
               rotational_energy(sim), rss, rss - rss_before);
+}
+
+// Runs `steps` steps of `sim` on `threads` threads (set before the scene was built, as the
+// caller does) and prints the line above, timing the steps only.
+inline void timed_run(Simulation& sim, long steps, int threads, long rss_before) {
+  const auto t0 = std::chrono::steady_clock::now();
+  for (long s = 0; s < steps; ++s) sim.advance();
+  const double loop = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  print_run(sim, steps, threads, loop, rss_before);
 }
 
 }  // namespace dem::bench

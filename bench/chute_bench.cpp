@@ -25,10 +25,7 @@ int main(int argc, char** argv) {
       omp_set_num_threads(threads);
       const long rss_before = bench::peak_rss_kb();
       Simulation sim = bench::chute_scene();
-      const auto t0 = std::chrono::steady_clock::now();
-      for (long s = 0; s < steps; ++s) sim.advance();
-      const double loop = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      bench::print_run(sim, steps, threads, loop, rss_before);
+      bench::timed_run(sim, steps, threads, rss_before);
       return 0;
     }
     if (argc == 3 && std::strcmp(argv[1], "lammps-data") == 0) {

@@ -55,10 +55,7 @@ int run(long n, long steps, int threads, long floor_triangles = 0, long shuffled
     for (const std::vector<Vec3>& t : rectangle_mesh(f[0], f[1] - f[0], f[3] - f[0], cells, cells, true))
       sim.walls.push_back(Wall{"floor." + std::to_string(sim.walls.size()), 1, t, {}});
   }
-  const auto t0 = std::chrono::steady_clock::now();
-  for (long s = 0; s < steps; ++s) sim.advance();
-  const double loop = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  bench::print_run(sim, steps, threads, loop, rss_before);
+  bench::timed_run(sim, steps, threads, rss_before);
   return 0;
 }
 

@@ -28,8 +28,7 @@ struct ContactForceSet {
   // The branch vector of pair k, from i's centre to j's (to j's nearest image across a periodic
   // boundary) [m].
   Vec3 branch(const Particles& p, std::size_t k) const {
-    const Vec3 l = p.x[pair_j[k]] - p.x[pair_i[k]];
-    return periodic.any() ? periodic.nearest(l) : l;
+    return periodic.nearest(p.x[pair_j[k]] - p.x[pair_i[k]]);
   }
   std::size_t walls() const { return wall_i.size(); }
 };

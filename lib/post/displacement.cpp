@@ -7,12 +7,6 @@
 
 namespace dem {
 
-namespace {
-Vec3 unwrapped(const PeriodicBox& box, const Particles& p, std::size_t k) {
-  return box.any() ? box.unwrapped(p.x[k], p.image[k]) : p.x[k];
-}
-}  // namespace
-
 DisplacementField displacement_by_id(const Particles& ref, const Particles& cur, const PeriodicBox& ref_box, const PeriodicBox& cur_box) {
   std::unordered_map<Index, std::size_t> slot;
   slot.reserve(ref.size());
@@ -25,7 +19,7 @@ DisplacementField displacement_by_id(const Particles& ref, const Particles& cur,
       ++d.added;
       continue;
     }
-    d.u[k] = unwrapped(cur_box, cur, k) - unwrapped(ref_box, ref, it->second);
+    d.u[k] = cur_box.unwrapped(cur.x[k], cur.image[k]) - ref_box.unwrapped(ref.x[it->second], ref.image[it->second]);
     ++d.matched;
   }
   d.removed = ref.size() - d.matched;

@@ -95,7 +95,7 @@ void LinkedCells::find_near_pairs(const Particles& p, const PeriodicBox& box, st
     std::vector<FoundContact>& mine = per_thread_[omp_get_thread_num()];
     mine.clear();
     auto test = [&](int a, int b) {
-      if (p.fixed[a] && p.fixed[b]) return;  // two held particles never interact
+      if (p.both_fixed(a, b)) return;
       const double r = p.radius[a] + p.radius[b];
       const double d2 = (periodic ? box.nearest(p.x[a] - p.x[b]) : Vec3(p.x[a] - p.x[b])).squaredNorm();
       if (d2 < (r + margin) * (r + margin)) {

@@ -12,7 +12,7 @@ MechanicalEnergy mechanical_energy(const Particles& p, const Vec3& gravity, cons
   for (std::size_t k = 0; k < p.size(); ++k) {
     double rotational;
     e.kinetic += kinetic_energy_of(p, k, rotational);
-    e.potential -= p.mass[k] * gravity.dot(box.any() ? box.unwrapped(p.x[k], p.image[k]) : p.x[k]);
+    e.potential -= p.mass[k] * gravity.dot(box.unwrapped(p.x[k], p.image[k]));
   }
   return e;
 }

@@ -37,9 +37,9 @@ double pair_forces(const ForceLoopInput& in, ContactList& pc) {
       const std::uint8_t was = pc.active[k];
       pc.active[k] = pair_touching<Periodic>(p, in.periodic, i, j) || pc.bonded[k];
       if constexpr (Fixed) {
-        // Two held particles never interact (the search skips such pairs too); a bond between
-        // them is dropped, so that nothing depends on when the list was last rebuilt.
-        if (p.fixed[i] && p.fixed[j]) pc.active[k] = 0, pc.bonded[k] = 0;
+        // A bond between two held particles is dropped too, so that nothing depends on when the
+        // list was last rebuilt.
+        if (p.both_fixed(i, j)) pc.active[k] = 0, pc.bonded[k] = 0;
       }
       contact[m] = static_cast<int>(k);
       m += pc.active[k];

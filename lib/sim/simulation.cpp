@@ -94,7 +94,7 @@ std::size_t Simulation::bond_present_contacts(bool walls_too) {
   std::size_t n = 0;
   for (std::size_t k = 0; k < pairs_.size(); ++k) {
     const int i = pairs_.slot_i[k], j = pairs_.slot_j[k];
-    if (p.fixed[i] && p.fixed[j]) continue;  // two held particles never interact
+    if (p.both_fixed(i, j)) continue;
     if (pair_touching(p, periodic, i, j) || pairs_.bonded[k]) pairs_.bonded[k] = pairs_.active[k] = 1, ++n;
   }
   if (walls_too) {

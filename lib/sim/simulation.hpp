@@ -75,7 +75,7 @@ class Simulation {
   void set_periodic(const PeriodicBox& box);
   // Particle k's position as if no periodic boundary had been crossed (x + image L) [m].
   Vec3 unwrapped_position(std::size_t k) const {
-    return periodic.any() ? periodic.unwrapped(particles.x[k], particles.image[k]) : particles.x[k];
+    return periodic.unwrapped(particles.x[k], particles.image[k]);
   }
 
   // Critical time step of eq. 2.48 (without FRAC): 2 sqrt(M_min / (2 K_max)).

@@ -42,6 +42,9 @@ struct Particles {
     fixed.push_back(0);
   }
 
+  // Two held particles never interact (the search skips such pairs, the force loop drops them).
+  bool both_fixed(std::size_t i, std::size_t j) const { return fixed[i] && fixed[j]; }
+
   double inertia(std::size_t k) const { return 0.4 * mass[k] * radius[k] * radius[k]; }  // I = 2/5 m a^2
 
   // Keep the particles for which keep[k] is true, preserving storage order.

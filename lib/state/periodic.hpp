@@ -54,7 +54,7 @@ struct PeriodicBox {
     }
   }
 
-  // The position as if no boundary had been crossed.
+  // The position as if no boundary had been crossed (x itself, to the bit, without periodic axes).
   Vec3 unwrapped(const Vec3& x, const Vec3i& image) const {
     Vec3 u = x;
     for (int a = 0; a < 3; ++a)
