@@ -2,6 +2,9 @@
 //   chute_bench run STEPS THREADS    runs the scene of bench/chute_scene.hpp for STEPS steps and
 //                                    prints one line (bench_report.hpp): loop seconds,
 //                                    particle-steps per second, contacts, energies, peak memory
+//   chute_bench scaled N STEPS THREADS
+//                                    the same flow on a wider chute of about N spheres (same depth,
+//                                    chute_footprint): the cost per particle-step against N
 //   chute_bench lammps-data FILE     writes the same initial state as a LAMMPS data file
 // The loop time covers the steps only (scene construction excluded), as LAMMPS's "Loop time".
 #include <omp.h>
@@ -19,12 +22,14 @@ using namespace dem;
 
 int main(int argc, char** argv) {
   try {
-    if (argc == 4 && std::strcmp(argv[1], "run") == 0) {
-      const long steps = std::atol(argv[2]);
-      const int threads = std::atoi(argv[3]);
+    const bool scaled = argc == 5 && std::strcmp(argv[1], "scaled") == 0;
+    if ((argc == 4 && std::strcmp(argv[1], "run") == 0) || scaled) {
+      const long steps = std::atol(argv[argc - 2]);
+      const int threads = std::atoi(argv[argc - 1]);
       omp_set_num_threads(threads);
       const long rss_before = bench::peak_rss_kb();
-      Simulation sim = bench::chute_scene();
+      const auto [nx, ny] = scaled ? bench::chute_footprint(std::atol(argv[2])) : std::pair{bench::kChuteNx, bench::kChuteNy};
+      Simulation sim = bench::chute_scene(nx, ny);
       bench::timed_run(sim, steps, threads, rss_before);
       return 0;
     }
@@ -36,6 +41,6 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "chute_bench: %s\n", e.what());
     return 1;
   }
-  std::fprintf(stderr, "usage: chute_bench run STEPS THREADS | chute_bench lammps-data FILE\n");
+  std::fprintf(stderr, "usage: chute_bench run STEPS THREADS | chute_bench scaled N STEPS THREADS | chute_bench lammps-data FILE\n");
   return 2;
 }

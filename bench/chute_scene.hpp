@@ -7,7 +7,9 @@
 // regenerated here: a periodic 40 x 20 base of 800 frozen spheres at heights jittered by +-0.1
 // (rough), and 31,200 free spheres above it on a touching simple cubic lattice (39 layers) with
 // random velocities of up to 0.5 per component, which collapses into a dense flowing pile. The same
-// state goes to LAMMPS and LIGGGHTS as a data file (bench/peers/in.chute.*).
+// state goes to LAMMPS and LIGGGHTS as a data file (bench/peers/in.chute.*). For the scaling
+// benchmark the footprint grows (nx x ny columns of 40 spheres each, same depth): the same flow on
+// a wider chute.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -15,6 +17,7 @@
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "settle_scene.hpp"  // restitution_of, write_lammps_velocities
 #include "sim/simulation.hpp"
@@ -47,7 +50,7 @@ inline MaterialTable chute_materials() {
   return MaterialTable({free, base}, {}, {on_base});
 }
 
-inline Simulation chute_scene() {
+inline Simulation chute_scene(int nx = kChuteNx, int ny = kChuteNy) {
   Simulation sim;
   sim.materials = chute_materials();
   const double angle = kChuteAngle * std::numbers::pi / 180;
@@ -57,22 +60,29 @@ inline Simulation chute_scene() {
   std::mt19937_64 rng(2026);
   std::uniform_real_distribution<double> jitter(-0.1, 0.1), vel(-0.5, 0.5);
   Index id = 0;
-  for (int j = 0; j < kChuteNy; ++j)
-    for (int i = 0; i < kChuteNx; ++i) {
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
       sim.particles.add(id, Vec3(i + 0.5, j + 0.5, 0.5 + jitter(rng)), 0.5, 1, 1);
       sim.particles.fixed[id++] = 1;
     }
   for (int k = 0; k < kChuteLayers; ++k)
-    for (int j = 0; j < kChuteNy; ++j)
-      for (int i = 0; i < kChuteNx; ++i) {
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
         sim.particles.add(id, Vec3(i + 0.5, j + 0.5, 1.7 + k), 0.5, 1, 0);
         sim.particles.v[id++] = Vec3(vel(rng), vel(rng), vel(rng));
       }
   PeriodicBox box;
   box.axis = {true, true, false};
-  box.hi = Vec3(kChuteNx, kChuteNy, 0);
+  box.hi = Vec3(nx, ny, 0);
   sim.set_periodic(box);
   return sim;
+}
+
+// The footprint (nx, ny; twice as long as wide) whose chute holds about n spheres.
+inline std::pair<int, int> chute_footprint(long n) {
+  const int columns = kChuteLayers + 1;  // spheres per unit of base area
+  const int nx = std::max(6, static_cast<int>(std::lround(std::sqrt(2.0 * static_cast<double>(n) / columns))));
+  return {nx, std::max(3, static_cast<int>(std::lround(nx / 2.0)))};
 }
 
 // The same state as a LAMMPS/LIGGGHTS data file (atom_style sphere / granular: id type diameter
@@ -84,7 +94,7 @@ inline void write_chute_lammps_data(const Simulation& sim, const std::string& pa
   double ztop = 0;
   for (const Vec3& x : p.x) ztop = std::max(ztop, x.z() + 1);
   std::fprintf(f, "chute benchmark (dem bench/chute_scene.hpp)\n\n%zu atoms\n2 atom types\n\n", p.size());
-  std::fprintf(f, "0 %d xlo xhi\n0 %d ylo yhi\n0 %.17g zlo zhi\n\nAtoms\n\n", kChuteNx, kChuteNy, ztop);
+  std::fprintf(f, "0 %.17g xlo xhi\n0 %.17g ylo yhi\n0 %.17g zlo zhi\n\nAtoms\n\n", sim.periodic.hi.x(), sim.periodic.hi.y(), ztop);
   for (std::size_t k = 0; k < p.size(); ++k)
     std::fprintf(f, "%lld %d 1 1 %.17g %.17g %.17g\n", static_cast<long long>(p.id[k] + 1), p.fixed[k] ? 2 : 1, p.x[k].x(),
                  p.x[k].y(), p.x[k].z());

@@ -9,7 +9,7 @@ out=bench/results/contact.md
   echo "# Contact physics: speed against error, and the price of each option"
   echo
   echo "Measured $(date -u +%Y-%m-%d) on $(nproc) cores ($(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')),"
-  echo "dem $(build/tools/run-stage --version | awk '{print $NF}'), g++ -O2. Reproduce: \`bash bench/run_contact_bench.sh\`."
+  echo "dem $(build/tools/run-stage --version | awk '{print $NF}'), g++ -O3. Reproduce: \`bash bench/run_contact_bench.sh\`."
   echo
   echo "## Speed against error (FRAC of eq. 2.48)"
   echo
