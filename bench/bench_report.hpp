@@ -28,7 +28,7 @@ inline void print_run(const Simulation& sim, long steps, int threads, double loo
   const long rss = peak_rss_kb();
   std::printf("walls %zu particles %zu steps %ld threads %d loop_s %.4f psps %.4g contacts %zu ke %.10g rke %.10g rss_kb %ld rss_increase_kb %ld\n",
               sim.walls.size(), sim.particles.size(), steps, threads, loop, sim.particles.size() * static_cast<double>(steps) / loop,
-              sim.pair_contacts().size() + sim.wall_contacts().size(), sim.kinetic_energy() - rotational_energy(sim),
+              sim.pair_contact_count() + sim.wall_contact_count(), sim.kinetic_energy() - rotational_energy(sim),
               rotational_energy(sim), rss, rss - rss_before);
 }
 

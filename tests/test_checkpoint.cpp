@@ -132,6 +132,24 @@ TEST_F(CheckpointTest, RoundTripIsExact) {
   EXPECT_EQ(s.particles.w, sim_.particles.w);
 }
 
+// The writer frees the compacted contact lists it used (a week-long run would otherwise carry a
+// copy of its contacts between checkpoints); they come back the same on demand, and the counts
+// that need no copy agree with them.
+TEST_F(CheckpointTest, WritingFreesTheContactViewsWhichComeBackTheSame) {
+  const ContactList pairs = sim_.pair_contacts(), walls = sim_.wall_contacts();
+  ASSERT_GT(pairs.size(), 0u);
+  EXPECT_EQ(sim_.pair_contact_count(), pairs.size());
+  EXPECT_EQ(sim_.wall_contact_count(), walls.size());
+  write_checkpoint(path_, sim_, meta_);
+  EXPECT_EQ(sim_.pair_contacts().key_i, pairs.key_i);
+  EXPECT_EQ(sim_.pair_contacts().key_j, pairs.key_j);
+  EXPECT_EQ(sim_.pair_contacts().spring, pairs.spring);
+  EXPECT_EQ(sim_.wall_contacts().key_i, walls.key_i);
+  sim_.release_contact_views();
+  EXPECT_EQ(sim_.wall_contacts().spring, walls.spring);
+  EXPECT_EQ(sim_.pair_contacts().size(), sim_.pair_contact_count());
+}
+
 // Periodic boundaries (the period, each particle's image counts) and held particles come back
 // exactly, and a run continued from the file equals one continued in memory.
 TEST_F(CheckpointTest, PeriodicAndFixedRoundTrip) {

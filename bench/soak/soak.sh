@@ -13,6 +13,7 @@
 # Writes OUT/gen.log (the settled bed), OUT/memory.csv (seconds, segment, pid, step, rss_kb), OUT/restarts.csv and OUT/soak.txt.
 #   bench/soak/soak.sh [MINUTES] [THREADS] [OUT]      (build first: make -f Makefile.cases build)
 # A short smoke run on a smaller scene: SOAK_SCENE=scene.toml SOAK_LIFE_MIN=30 SOAK_LIFE_MAX=60 CHECKPOINT=2000
+# SOAK_BED=OUT/poured.h5 of an earlier soak of the same scene skips the settle (~15 min on 2 cores).
 set -u
 minutes=${1:-60} threads=${2:-0} out=${3:-out/soak}
 root=$(cd "$(dirname "$0")/../.." && pwd)
@@ -25,7 +26,12 @@ rm -f "$out"/shake.h5 "$out"/shake.restart.h5
 echo "seconds,segment,pid,step,rss_kb" > "$out/memory.csv"
 echo "segment,started_s,resumed_step,checkpoint_step_before,killed_s" > "$out/restarts.csv"
 RANDOM=2026
-"$bin/gen-primary" --scene "$scene" --out "$out/poured.h5" --threads "$threads" > "$out/gen.log" 2>&1 || { cat "$out/gen.log"; exit 1; }
+if [ -n "${SOAK_BED:-}" ]; then
+  [ "$(cd "$(dirname "$SOAK_BED")" && pwd)/$(basename "$SOAK_BED")" = "$(cd "$out" && pwd)/poured.h5" ] || cp "$SOAK_BED" "$out/poured.h5"
+  echo "bed reused from $SOAK_BED: $count particles" > "$out/gen.log"
+else
+  "$bin/gen-primary" --scene "$scene" --out "$out/poured.h5" --threads "$threads" > "$out/gen.log" 2>&1 || { cat "$out/gen.log"; exit 1; }
+fi
 t0=$(date +%s) end=$(( $(date +%s) + minutes * 60 )) segment=0 fail=0 last_resume=-1
 ckpt_step() {  # the step a checkpoint holds, or -1
   /usr/bin/python3 -c "import h5py,sys; print(int(h5py.File(sys.argv[1],'r')['state/step'][()]))" "$1" 2>/dev/null || echo -1

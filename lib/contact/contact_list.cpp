@@ -5,16 +5,39 @@
 
 namespace dem {
 
+namespace {
+// std::vector::resize at least doubles the capacity whenever it grows: the candidate list, the
+// largest thing in memory of a dense run, grows by a few entries at many rebuilds and would keep
+// up to twice the room it needs. Grown to exactly n instead (a rebuild copies the list anyway).
+template <class T>
+void resize_exactly(std::vector<T>& v, std::size_t n, const T& value) {
+  if (n > v.capacity()) v.reserve(n);
+  v.resize(n, value);
+}
+}  // namespace
+
 void ContactList::resize(std::size_t n) {
-  key_i.resize(n);
-  key_j.resize(n);
-  slot_i.resize(n, -1);
-  slot_j.resize(n, -1);
-  spring.resize(n, Vec3::Zero());
-  bonded.resize(n, 0);
-  active.resize(n, 0);
-  normal.resize(n, Vec3::Zero());
-  sum.resize(n);
+  resize_exactly(key_i, n, Index{0});
+  resize_exactly(key_j, n, Index{0});
+  resize_exactly(slot_i, n, -1);
+  resize_exactly(slot_j, n, -1);
+  resize_exactly(spring, n, Vec3(Vec3::Zero()));
+  resize_exactly(bonded, n, std::uint8_t{0});
+  resize_exactly(active, n, std::uint8_t{0});
+  resize_exactly(normal, n, Vec3(Vec3::Zero()));
+  resize_exactly(sum, n, ContactSum());
+}
+
+void ContactList::reserve(std::size_t n) {
+  key_i.reserve(n);
+  key_j.reserve(n);
+  slot_i.reserve(n);
+  slot_j.reserve(n);
+  spring.reserve(n);
+  bonded.reserve(n);
+  active.reserve(n);
+  normal.reserve(n);
+  sum.reserve(n);
 }
 
 void ContactList::push_back_from(const ContactList& from, std::size_t k) {
@@ -90,8 +113,13 @@ void carry_history(ContactList& list, KeyOrder& by_key, const std::vector<FoundC
   by_key.swap(place);
 }
 
+std::size_t active_count(const ContactList& list) {
+  return static_cast<std::size_t>(std::count_if(list.active.begin(), list.active.end(), [](std::uint8_t a) { return a != 0; }));
+}
+
 void active_contacts(const ContactList& list, const KeyOrder& by_key, ContactList& out) {
   out.clear();
+  out.reserve(active_count(list));
   for (std::size_t r = 0; r < list.size(); ++r) {
     const int k = key_rank_to_position(by_key, r);
     if (list.active[k]) out.push_back_from(list, k);

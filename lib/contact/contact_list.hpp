@@ -37,7 +37,8 @@ struct ContactList {
   // The tangential part f_t of force(k): (n x f_t) x n, since f_t lies in the tangent plane.
   Vec3 tangential(std::size_t k) const { return sum[k].moment.cross(normal[k]); }
   void clear() { resize(0); }
-  void resize(std::size_t n);
+  void resize(std::size_t n);  // to exactly n entries' room when it grows
+  void reserve(std::size_t n);
   // Appends entry k of `from` (all fields).
   void push_back_from(const ContactList& from, std::size_t k);
 };
@@ -74,6 +75,9 @@ void carry_history(ContactList& list, KeyOrder& by_key, const std::vector<FoundC
 inline int key_rank_to_position(const KeyOrder& by_key, std::size_t r) {
   return by_key.empty() ? static_cast<int>(r) : by_key[r];
 }
+
+// How many entries of `list` are active.
+std::size_t active_count(const ContactList& list);
 
 // The active entries of `list`, in key order.
 void active_contacts(const ContactList& list, const KeyOrder& by_key, ContactList& out);

@@ -418,6 +418,7 @@ void write_all(Writer& w, const Simulation& sim, const CheckpointMeta& meta) {
   w.group("/contacts");
   contacts("pair", sim.pair_contacts());
   contacts("wall", sim.wall_contacts());
+  sim.release_contact_views();
 
   w.group("/walls");
   const std::size_t nw = sim.walls.size();

@@ -47,7 +47,7 @@ double kinetic_ratio(const Simulation& sim) {
 
 double coordination_number(const Simulation& sim) {
   const double n = static_cast<double>(sim.particles.size());
-  return n > 0 ? (2.0 * sim.pair_contacts().size() + sim.wall_contacts().size()) / n : 0.0;
+  return n > 0 ? (2.0 * sim.pair_contact_count() + sim.wall_contact_count()) / n : 0.0;
 }
 
 }  // namespace dem

@@ -44,6 +44,15 @@ const ContactList& Simulation::wall_contacts() const {
   return wall_view_;
 }
 
+std::size_t Simulation::pair_contact_count() const { return active_count(pairs_); }
+std::size_t Simulation::wall_contact_count() const { return active_count(walls_); }
+
+void Simulation::release_contact_views() const {
+  pair_view_ = ContactList();  // move-assigned from an empty list: the storage is freed
+  wall_view_ = ContactList();
+  pair_view_current_ = wall_view_current_ = false;
+}
+
 void Simulation::contacts_modified() { pair_view_current_ = wall_view_current_ = false; }
 
 void Simulation::set_contacts(ContactList pairs, ContactList walls) {
@@ -205,6 +214,7 @@ void Simulation::index_contacts_per_particle() {
   for (long k = 0; k < npc; ++k) ++csr_start_[pairs_.slot_i[k] + 1], ++csr_start_[pairs_.slot_j[k] + 1];
   for (long k = 0; k < nwc; ++k) ++csr_start_[walls_.slot_i[k] + 1];
   for (std::size_t k = 0; k < n; ++k) csr_start_[k + 1] += csr_start_[k];
+  if (static_cast<std::size_t>(csr_start_[n]) > csr_entry_.capacity()) csr_entry_.reserve(csr_start_[n]);  // no doubling
   csr_entry_.resize(csr_start_[n]);
   csr_fill_.assign(csr_start_.begin(), csr_start_.end() - 1);
   for (long r = 0; r < npc; ++r) {

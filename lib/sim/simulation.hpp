@@ -60,6 +60,13 @@ class Simulation {
   // the time loop); after set_contacts, the lists given.
   const ContactList& pair_contacts() const;
   const ContactList& wall_contacts() const;
+  // How many there are, without compacting them.
+  std::size_t pair_contact_count() const;
+  std::size_t wall_contact_count() const;
+  // Frees the compacted copies (compacted again on demand). A caller that needs them once in a
+  // while (a checkpoint) calls this afterwards, so that a long run does not carry a second copy
+  // of its contacts from one checkpoint to the next.
+  void release_contact_views() const;
   // Replaces the contact history (checkpoint read, a new scene, new particles): lists sorted by
   // key, slots found again at the next step.
   void set_contacts(ContactList pairs, ContactList walls);
