@@ -18,6 +18,13 @@ namespace {
 // Each loop also returns the largest overlap relative to the smaller radius (a stability check).
 constexpr long kChunk = 256;  // candidates per pass-1/pass-2 block
 
+// overlap / radius where it may exceed `worst`, else 0: the division (one per contact) is done only
+// near a new largest value. The margin keeps the result exact: whenever the quotient exceeds
+// `worst`, the product test passes despite rounding, so the maximum is the same as dividing always.
+inline double relative_overlap_if_larger(double overlap, double radius, double worst) {
+  return overlap >= worst * radius * (1 - 1e-9) ? overlap / radius : 0.0;
+}
+
 // Periodic: distances to the nearest image; Fixed: some particles are held in place. Both are
 // template parameters so that a scene without them pays nothing.
 template <class Normal, bool Periodic, bool Fixed>
@@ -29,19 +36,23 @@ double pair_forces(const ForceLoopInput& in, ContactList& pc) {
   for (long first = 0; first < n; first += kChunk) {
     const long last = std::min(n, first + kChunk);
     // Pass 1: which candidates are contacts (touching, or held by a bond). The others get no force
-    // and lose their history. Pass 2 then runs the law without an unpredictable branch.
+    // and lose their history. Pass 2 then runs the law without an unpredictable branch, on the
+    // separations pass 1 found (a contact's positions are gathered and its nearest image taken once).
     int contact[kChunk];
+    Vec3 separations[kChunk];
     int m = 0;
     for (long k = first; k < last; ++k) {
       const int i = pc.slot_i[k], j = pc.slot_j[k];
       const std::uint8_t was = pc.active[k];
-      pc.active[k] = pair_touching<Periodic>(p, in.periodic, i, j) || pc.bonded[k];
+      const Vec3 d = separation<Periodic>(p, in.periodic, i, j);
+      pc.active[k] = spheres_touch(d, p.radius[i], p.radius[j]) || pc.bonded[k];
       if constexpr (Fixed) {
         // A bond between two held particles is dropped too, so that nothing depends on when the
         // list was last rebuilt.
         if (p.both_fixed(i, j)) pc.active[k] = 0, pc.bonded[k] = 0;
       }
       contact[m] = static_cast<int>(k);
+      separations[m] = d;
       m += pc.active[k];
       // A candidate that was no contact already holds zeros (ContactList): in a dense bed most
       // candidates are such, and rewriting their 72 bytes every step cost memory bandwidth.
@@ -50,7 +61,7 @@ double pair_forces(const ForceLoopInput& in, ContactList& pc) {
     for (int e = 0; e < m; ++e) {
       const long k = contact[e];
       const int i = pc.slot_i[k], j = pc.slot_j[k];
-      const Vec3 d = separation<Periodic>(p, in.periodic, i, j);
+      const Vec3& d = separations[e];
       const double dist = d.norm();
       ContactKinematics c;
       c.n = d * (1.0 / dist);
@@ -62,7 +73,7 @@ double pair_forces(const ForceLoopInput& in, ContactList& pc) {
           ContactLaw<Normal>::evaluate(in.materials.pair(p.material[i], p.material[j]), c, in.dt, pc.spring[k], pc.bonded[k]);
       pc.normal[k] = c.n;
       pc.sum[k] = {f.on_i, c.n.cross(f.tangential)};
-      worst = std::max(worst, c.overlap / std::min(p.radius[i], p.radius[j]));
+      worst = std::max(worst, relative_overlap_if_larger(c.overlap, std::min(p.radius[i], p.radius[j]), worst));
     }
   }
   return worst;
@@ -126,7 +137,7 @@ double wall_forces(const ForceLoopInput& in, ContactList& wc) {
         wc.active[k] = 1;
         wc.normal[k] = c.n;
         wc.sum[k] = {f.on_i, c.n.cross(f.tangential)};
-        worst = std::max(worst, c.overlap / p.radius[i]);
+        worst = std::max(worst, relative_overlap_if_larger(c.overlap, p.radius[i], worst));
       }
     }
   }

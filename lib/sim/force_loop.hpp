@@ -55,10 +55,13 @@ inline double effective_mass(const Particles& p, int i, int j) {
 }
 
 // Whether a candidate touches now: the test that makes it a contact (with a bond, so does holding).
+inline bool spheres_touch(const Vec3& separation, double radius_i, double radius_j) {
+  const double r = radius_i + radius_j;
+  return separation.squaredNorm() < r * r;
+}
 template <bool Periodic>
 inline bool pair_touching(const Particles& p, const PeriodicBox& box, int i, int j) {
-  const double r = p.radius[i] + p.radius[j];
-  return separation<Periodic>(p, box, i, j).squaredNorm() < r * r;
+  return spheres_touch(separation<Periodic>(p, box, i, j), p.radius[i], p.radius[j]);
 }
 inline bool pair_touching(const Particles& p, const PeriodicBox& box, int i, int j) {
   return box.any() ? pair_touching<true>(p, box, i, j) : pair_touching<false>(p, box, i, j);
