@@ -5,19 +5,21 @@
 # runs the same physics per particle. Writes bench/results/scaling.md (and scaling_runs.csv).
 # Usage: bash bench/run_scaling_bench.sh [REPS] [STEPS] [SIZES] [THREADS]   (from anywhere; default
 #   2 reps of 2,000 steps, sizes "10000 32000 100000 320000 1000000", threads "1 2": about
-#   15 minutes on 2 cores; needs the machine to itself for meaningful times)
+#   15 minutes on 2 cores; needs the machine to itself for meaningful times). BUILD=dir builds and
+#   runs in another build directory (as Makefile.cases), e.g. while a long run uses build/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 reps=${1:-2} steps=${2:-2000} sizes=${3:-"10000 32000 100000 320000 1000000"} threads=${4:-"1 2"}
-make -f Makefile.cases build > /dev/null
-cmake --build build --target chute_bench -- --no-print-directory > /dev/null
+build=${BUILD:-build}
+make -f Makefile.cases build BUILD="$build" > /dev/null
+cmake --build "$build" --target chute_bench -- --no-print-directory > /dev/null
 csv=bench/results/scaling_runs.csv
 echo "particles,threads,steps,loop_s,ns_per_particle_step,contacts,peak_rss_kb,rss_increase_kb,rep" > "$csv.tmp"
 field() { awk -v k="$1" '{for (i = 1; i < NF; i++) if ($i == k) print $(i + 1)}'; }
 for rep in $(seq 1 "$reps"); do
   for n in $sizes; do
     for t in $threads; do
-      line=$(OMP_NUM_THREADS=$t build/bench/chute_bench scaled "$n" "$steps" "$t")
+      line=$(OMP_NUM_THREADS=$t "$build"/bench/chute_bench scaled "$n" "$steps" "$t")
       np=$(field particles <<< "$line") loop=$(field loop_s <<< "$line")
       echo "$np,$t,$steps,$loop,$(awk -v l="$loop" -v n="$np" -v s="$steps" 'BEGIN {printf "%.2f", l / n / s * 1e9}'),$(field contacts <<< "$line"),$(field rss_kb <<< "$line"),$(field rss_increase_kb <<< "$line"),$rep" >> "$csv.tmp"
       echo "rep $rep: $line" >&2
