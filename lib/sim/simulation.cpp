@@ -241,19 +241,17 @@ void Simulation::net_load(long i, Vec3& f, Vec3& t) const {
   // count. Skipping reads a byte per candidate instead of 48 (most candidates of a dense bed are
   // not touching).
   f = p.mass[i] * (params.gravity + Vec3::Zero());
-  Vec3 moments = Vec3::Zero();
+  t = Vec3::Zero();
   for (int e = csr_start_[i]; e < csr_start_[i + 1]; ++e) {
     const unsigned code = static_cast<unsigned>(csr_entry_[e]);
     const long k = code >> 1;
     const bool pair = k < npc;
     if (!(pair ? pairs_.active[k] : walls_.active[k - npc])) continue;
+    // Torques, eq. 2.33-2.34: M = a n x f_t for i and j alike (M_j = (a_j / a_i) M_i).
     const ContactSum& c = pair ? pairs_.sum[k] : walls_.sum[k - npc];
     f += (code & 1) ? Vec3(-c.force) : c.force;  // eq. 2.31-2.32
-    moments += c.moment;
+    t += p.radius[i] * c.moment;
   }
-  // Torques, eq. 2.33-2.34: M = a n x f_t for i and j alike (M_j = (a_j / a_i) M_i), so the
-  // radius multiplies the sum once.
-  t = p.radius[i] * moments;
 }
 
 void Simulation::integrate(bool any_fixed) {
