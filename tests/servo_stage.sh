@@ -37,16 +37,23 @@ def second_half(path, label):
     rows = lid(path, 0.001)
     half = rows[len(rows) // 2:]
     mean = sum(half) / len(half)
-    print(f"{label}: second half mean {mean:.1f} Pa ({100 * (mean / target - 1):+.2f} %), single rows {min(half):.0f} .. {max(half):.0f} Pa")
-    return mean / target - 1, max(abs(s / target - 1) for s in half)
-lag_p, _ = second_half(sys.argv[2], "squeeze, proportional (gain 0.2)")
-lag_pi, worst_pi = second_half(sys.argv[4], "squeeze, PI (gain 0.2, integral_time 0.003 s)")
-# The proportional servo lags behind a steady squeeze (the lid stress stays above the target:
-# measured +4.7 %), and the integral action removes the lag. Tolerances: the mean within 1 % (the
-# quarters of the PI run measured within 0.3 %; the 8-15 lid contacts rearrange, which no servo
-# can follow at once), single 20-step rows within 10 % (measured 3.8 %; the proportional run
-# reaches +8.8 %).
-assert lag_p > 0.02, "the proportional servo should lag measurably behind a steady squeeze"
-assert abs(lag_pi) <= 0.01, "while the interior changes the PI servo must hold the mean stress within 1 %"
-assert worst_pi <= 0.10, "while the interior changes the PI servo must hold every row within 10 %"
+    within = sum(abs(s / target - 1) <= 0.10 for s in half) / len(half)
+    print(f"{label}: second half mean {mean:.1f} Pa ({100 * (mean / target - 1):+.2f} %), single rows {min(half):.0f} .. {max(half):.0f} Pa, "
+          f"{100 * within:.1f} % of them within 10 %")
+    return mean / target - 1, within
+err_p, _ = second_half(sys.argv[2], "squeeze, proportional (gain 0.2)")
+err_pi, within_pi = second_half(sys.argv[4], "squeeze, PI (gain 0.2, integral_time 0.003 s)")
+# The squeezed 150-sphere sample is chaotic: its force chains buckle now and then, and the lid,
+# held by 8-15 contacts, loses part of its support until the servo has moved it on; which
+# trajectory, and so when and how deep these drops are, changes with the last bit of anything.
+# The tolerances come from 18 runs with the time step changed by up to 0.4 % (frac 0.0996 ..
+# 0.1004, before and after the force sums of load blocks): the PI mean was within 0.36 % of the
+# target in every run (within 1 % asked); the proportional servo's mean was off by 1.9 .. 8.6 %
+# (its lag behind a steady squeeze, ~ rate / gain, measured +4.7 % in a run without drops, and the
+# drops it is slow to make up), always more than twice the PI's (asked); 85 .. 100 % of the PI
+# rows (20 steps each) were within 10 % (75 % asked). Bounds on single rows, or on the sign of the
+# proportional lag, held in one trajectory and failed in half of the others.
+assert abs(err_pi) <= 0.01, "while the interior changes the PI servo must hold the mean stress within 1 %"
+assert abs(err_p) > 2 * abs(err_pi), "the integral action must bring the mean closer to the target than proportional control"
+assert within_pi >= 0.75, "the PI servo must hold most rows within 10 %"
 PY

@@ -10,13 +10,13 @@ namespace dem {
 
 namespace {
 
-// Each contact is written by one thread only; no atomics (DESIGN.md). Each thread takes one
-// contiguous block of candidates (static schedule), as it takes one contiguous block of particles
-// in the sums and the integration: candidates sorted by key follow the particles' order, so a
-// thread mostly reads particles that stay in its own core's cache. (Chunks dealt in turn balanced
-// the threads better but made the cores trade cache lines every step: 40 % slower on 2 cores.)
+// Each contact and each block of particles is written by one thread only; no atomics (DESIGN.md).
+// Each thread takes a contiguous run of blocks (static schedule), as it takes a contiguous run of
+// particles in the integration: candidates stored along the particles' order, so a thread mostly
+// reads particles that stay in its own core's cache. (Chunks dealt in turn balanced the threads
+// better but made the cores trade cache lines every step: 40 % slower on 2 cores.)
 // Each loop also returns the largest overlap relative to the smaller radius (a stability check).
-constexpr long kChunk = 256;  // candidates per pass-1/pass-2 block
+constexpr long kChunk = 256;  // candidates per pass-1/pass-2 chunk
 
 // overlap / radius where it may exceed `worst`, else 0: the division (one per contact) is done only
 // near a new largest value. The margin keeps the result exact: whenever the quotient exceeds
@@ -25,55 +25,75 @@ inline double relative_overlap_if_larger(double overlap, double radius, double w
   return overlap >= worst * radius * (1 - 1e-9) ? overlap / radius : 0.0;
 }
 
-// Periodic: distances to the nearest image; Fixed: some particles are held in place. Both are
-// template parameters so that a scene without them pays nothing.
+// The candidates [first, last) of one block whose slots end before `block_end`. Periodic:
+// distances to the nearest image; Fixed: some particles are held in place. Both are template
+// parameters so that a scene without them pays nothing.
 template <class Normal, bool Periodic, bool Fixed>
-double pair_forces(const ForceLoopInput& in, ContactList& pc) {
+double pair_chunk(const ForceLoopInput& in, ContactList& pc, BlockLoads& out, long first, long last, int block_end) {
   const Particles& p = in.particles;
-  const long n = static_cast<long>(pc.size());
+  double worst = 0;
+  // Pass 1: which candidates are contacts (touching, or held by a bond). The others get no force
+  // and lose their history. Pass 2 then runs the law without an unpredictable branch, on the
+  // separations pass 1 found (a contact's positions are gathered and its nearest image taken once).
+  int contact[kChunk];
+  Vec3 separations[kChunk];
+  int m = 0;
+  for (long k = first; k < last; ++k) {
+    const int i = pc.slot_i[k], j = pc.slot_j[k];
+    const std::uint8_t was = pc.active[k];
+    const Vec3 d = separation<Periodic>(p, in.periodic, i, j);
+    pc.active[k] = spheres_touch(d, p.radius[i], p.radius[j]) || pc.bonded[k];
+    if constexpr (Fixed) {
+      // A bond between two held particles is dropped too, so that nothing depends on when the
+      // list was last rebuilt.
+      if (p.both_fixed(i, j)) pc.active[k] = 0, pc.bonded[k] = 0;
+    }
+    contact[m] = static_cast<int>(k);
+    separations[m] = d;
+    m += pc.active[k];
+    // A candidate that was no contact already holds zeros (ContactList): in a dense bed most
+    // candidates are such, and rewriting their 72 bytes every step cost memory bandwidth.
+    if (!pc.active[k] && was) pc.spring[k] = Vec3::Zero(), pc.sum[k] = ContactSum();
+  }
+  for (int e = 0; e < m; ++e) {
+    const long k = contact[e];
+    const int i = pc.slot_i[k], j = pc.slot_j[k];
+    const Vec3& d = separations[e];
+    const double dist = d.norm();
+    ContactKinematics c;
+    c.n = d * (1.0 / dist);
+    c.overlap = p.radius[i] + p.radius[j] - dist;  // eq. 2.11
+    c.v_rel = p.v[j] - p.v[i];
+    c.w_arm = p.radius[j] * p.w[j] + p.radius[i] * p.w[i];
+    c.m_eff = effective_mass<Fixed>(p, i, j);
+    const ContactForce f =
+        ContactLaw<Normal>::evaluate(in.materials.pair(p.material[i], p.material[j]), c, in.dt, pc.spring[k], pc.bonded[k]);
+    const Vec3 moment = c.n.cross(f.tangential);
+    pc.normal[k] = c.n;
+    pc.sum[k] = {f.on_i, moment};
+    if (std::max(i, j) < block_end) {  // both in this block (the smaller slot always is)
+      out.force[i] += f.on_i;          // eq. 2.31-2.32
+      out.force[j] -= f.on_i;
+      out.torque[i] += p.radius[i] * moment;  // eq. 2.33-2.34: a n x f_t for i and j alike
+      out.torque[j] += p.radius[j] * moment;
+    }
+    worst = std::max(worst, relative_overlap_if_larger(c.overlap, std::min(p.radius[i], p.radius[j]), worst));
+  }
+  return worst;
+}
+
+template <class Normal, bool Periodic, bool Fixed>
+double pair_forces(const ForceLoopInput& in, ContactList& pc, BlockLoads& out) {
+  const long blocks = static_cast<long>(out.first.size()) - 1;
+  const long slots = static_cast<long>(in.particles.size());
   double worst = 0;
 #pragma omp parallel for schedule(static) reduction(max : worst)
-  for (long first = 0; first < n; first += kChunk) {
-    const long last = std::min(n, first + kChunk);
-    // Pass 1: which candidates are contacts (touching, or held by a bond). The others get no force
-    // and lose their history. Pass 2 then runs the law without an unpredictable branch, on the
-    // separations pass 1 found (a contact's positions are gathered and its nearest image taken once).
-    int contact[kChunk];
-    Vec3 separations[kChunk];
-    int m = 0;
-    for (long k = first; k < last; ++k) {
-      const int i = pc.slot_i[k], j = pc.slot_j[k];
-      const std::uint8_t was = pc.active[k];
-      const Vec3 d = separation<Periodic>(p, in.periodic, i, j);
-      pc.active[k] = spheres_touch(d, p.radius[i], p.radius[j]) || pc.bonded[k];
-      if constexpr (Fixed) {
-        // A bond between two held particles is dropped too, so that nothing depends on when the
-        // list was last rebuilt.
-        if (p.both_fixed(i, j)) pc.active[k] = 0, pc.bonded[k] = 0;
-      }
-      contact[m] = static_cast<int>(k);
-      separations[m] = d;
-      m += pc.active[k];
-      // A candidate that was no contact already holds zeros (ContactList): in a dense bed most
-      // candidates are such, and rewriting their 72 bytes every step cost memory bandwidth.
-      if (!pc.active[k] && was) pc.spring[k] = Vec3::Zero(), pc.sum[k] = ContactSum();
-    }
-    for (int e = 0; e < m; ++e) {
-      const long k = contact[e];
-      const int i = pc.slot_i[k], j = pc.slot_j[k];
-      const Vec3& d = separations[e];
-      const double dist = d.norm();
-      ContactKinematics c;
-      c.n = d * (1.0 / dist);
-      c.overlap = p.radius[i] + p.radius[j] - dist;  // eq. 2.11
-      c.v_rel = p.v[j] - p.v[i];
-      c.w_arm = p.radius[j] * p.w[j] + p.radius[i] * p.w[i];
-      c.m_eff = effective_mass<Fixed>(p, i, j);
-      const ContactForce f =
-          ContactLaw<Normal>::evaluate(in.materials.pair(p.material[i], p.material[j]), c, in.dt, pc.spring[k], pc.bonded[k]);
-      pc.normal[k] = c.n;
-      pc.sum[k] = {f.on_i, c.n.cross(f.tangential)};
-      worst = std::max(worst, relative_overlap_if_larger(c.overlap, std::min(p.radius[i], p.radius[j]), worst));
+  for (long b = 0; b < blocks; ++b) {
+    const int block_end = static_cast<int>(std::min(slots, (b + 1) * out.block));
+    for (int s = static_cast<int>(b * out.block); s < block_end; ++s) out.force[s] = out.torque[s] = Vec3::Zero();
+    for (long first = out.first[b]; first < out.first[b + 1]; first += kChunk) {
+      const long last = std::min(out.first[b + 1], first + kChunk);
+      worst = std::max(worst, pair_chunk<Normal, Periodic, Fixed>(in, pc, out, first, last, block_end));
     }
   }
   return worst;
@@ -145,12 +165,12 @@ double wall_forces(const ForceLoopInput& in, ContactList& wc) {
 }
 
 template <class Normal>
-double all_forces(const ForceLoopInput& in, ContactList& pairs, ContactList& walls) {
+double all_forces(const ForceLoopInput& in, ContactList& pairs, ContactList& walls, BlockLoads& loads) {
   double worst_pair;
   if (in.periodic.any())
-    worst_pair = in.any_fixed ? pair_forces<Normal, true, true>(in, pairs) : pair_forces<Normal, true, false>(in, pairs);
+    worst_pair = in.any_fixed ? pair_forces<Normal, true, true>(in, pairs, loads) : pair_forces<Normal, true, false>(in, pairs, loads);
   else
-    worst_pair = in.any_fixed ? pair_forces<Normal, false, true>(in, pairs) : pair_forces<Normal, false, false>(in, pairs);
+    worst_pair = in.any_fixed ? pair_forces<Normal, false, true>(in, pairs, loads) : pair_forces<Normal, false, false>(in, pairs, loads);
   return std::max(worst_pair, wall_forces<Normal>(in, walls));
 }
 
@@ -215,12 +235,13 @@ const char* variant_name(ForceVariant v) {
   return "?";
 }
 
-double compute_contact_forces(const ForceLoopInput& in, ForceVariant variant, ContactList& pairs, ContactList& walls) {
+double compute_contact_forces(const ForceLoopInput& in, ForceVariant variant, ContactList& pairs, ContactList& walls,
+                              BlockLoads& loads) {
   switch (variant) {
-    case ForceVariant::Cundall: return all_forces<CundallNormal>(in, pairs, walls);
-    case ForceVariant::Liu: return all_forces<LiuNormal>(in, pairs, walls);
-    case ForceVariant::Mendes: return all_forces<MendesNormal>(in, pairs, walls);
-    case ForceVariant::Mixed: return all_forces<MixedNormal>(in, pairs, walls);
+    case ForceVariant::Cundall: return all_forces<CundallNormal>(in, pairs, walls, loads);
+    case ForceVariant::Liu: return all_forces<LiuNormal>(in, pairs, walls, loads);
+    case ForceVariant::Mendes: return all_forces<MendesNormal>(in, pairs, walls, loads);
+    case ForceVariant::Mixed: return all_forces<MixedNormal>(in, pairs, walls, loads);
   }
   return 0;
 }

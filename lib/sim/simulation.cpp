@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
 #include <utility>
 
 #include "sim/force_loop.hpp"
@@ -18,7 +19,10 @@ void Simulation::advance() {
   find_contacts();
   const bool any_fixed = std::find(particles.fixed.begin(), particles.fixed.end(), 1) != particles.fixed.end();
   const ForceLoopInput in{particles, materials, walls, wall_geometry_, wall_runs_, periodic, any_fixed, dt};
-  const double worst_overlap = compute_contact_forces(in, choose_force_variant(*this), pairs_, walls_);
+  block_force_.resize(particles.size());
+  block_torque_.resize(particles.size());
+  BlockLoads loads{params.load_block, block_first_, block_force_, block_torque_};
+  const double worst_overlap = compute_contact_forces(in, choose_force_variant(*this), pairs_, walls_, loads);
   contacts_modified();
   if (worst_overlap > params.max_overlap) report_overlap(worst_overlap);
   if (params.max_energy_gain > 0) audit_energy();
@@ -204,14 +208,27 @@ void Simulation::find_contacts() {
 }
 
 void Simulation::index_contacts_per_particle() {
-  // Per-particle lists of candidate entries in a fixed order (pairs by key, then walls), so that
-  // the sums of net_load give the same bits for any thread count and any storage order. Entry
-  // codes: 2k = pair k seen from i, 2k+1 = seen from j, 2(npc+k) = wall candidate k.
   const std::size_t n = particles.size();
   const long npc = static_cast<long>(pairs_.size());
   const long nwc = static_cast<long>(walls_.size());
+  // Load blocks: candidates are stored grouped by their smaller slot, in slot order
+  // (place_by_storage), so each block's candidates form one run.
+  const long block = std::max(1L, params.load_block);
+  const long blocks = (static_cast<long>(n) + block - 1) / block;
+  auto lower_slot = [&](long k) { return std::min(pairs_.slot_i[k], pairs_.slot_j[k]); };
+  auto across_blocks = [&](long k) { return pairs_.slot_i[k] / block != pairs_.slot_j[k] / block; };
+  block_first_.resize(blocks + 1);
+  for (long b = 0, k = 0; b <= blocks; ++b) {
+    while (k < npc && lower_slot(k) < b * block) ++k;
+    block_first_[b] = k;
+  }
+  if (block_first_[blocks] != npc) throw std::logic_error("pair candidates not stored along the slots");
+  // Per-particle lists of the other entries in a fixed order (pairs across blocks by key, then
+  // walls), so that the sums of net_load give the same bits for any thread count. Entry codes:
+  // 2k = pair k seen from i, 2k+1 = seen from j, 2(npc+k) = wall candidate k.
   csr_start_.assign(n + 1, 0);
-  for (long k = 0; k < npc; ++k) ++csr_start_[pairs_.slot_i[k] + 1], ++csr_start_[pairs_.slot_j[k] + 1];
+  for (long k = 0; k < npc; ++k)
+    if (across_blocks(k)) ++csr_start_[pairs_.slot_i[k] + 1], ++csr_start_[pairs_.slot_j[k] + 1];
   for (long k = 0; k < nwc; ++k) ++csr_start_[walls_.slot_i[k] + 1];
   for (std::size_t k = 0; k < n; ++k) csr_start_[k + 1] += csr_start_[k];
   if (static_cast<std::size_t>(csr_start_[n]) > csr_entry_.capacity()) csr_entry_.reserve(csr_start_[n]);  // no doubling
@@ -219,6 +236,7 @@ void Simulation::index_contacts_per_particle() {
   csr_fill_.assign(csr_start_.begin(), csr_start_.end() - 1);
   for (long r = 0; r < npc; ++r) {
     const int k = key_rank_to_position(pair_by_key_, r);
+    if (!across_blocks(k)) continue;
     csr_entry_[csr_fill_[pairs_.slot_i[k]]++] = static_cast<int>(2 * k);
     csr_entry_[csr_fill_[pairs_.slot_j[k]]++] = static_cast<int>(2 * k + 1);
   }
@@ -234,14 +252,13 @@ void Simulation::index_contacts_per_particle() {
 void Simulation::net_load(long i, Vec3& f, Vec3& t) const {
   const Particles& p = particles;
   const long npc = static_cast<long>(pairs_.size());
-  // Mere candidates hold exact zeros (ContactList) and are skipped: adding them would change no
-  // sum as long as no sum is -0, so the candidate set, which depends on when the list was
-  // rebuilt, never changes a bit of the result (start from +0: gravity -0 becomes +0). Summed in
-  // the particle's fixed entry order (index_contacts_per_particle): the same bits for any thread
-  // count. Skipping reads a byte per candidate instead of 48 (most candidates of a dense bed are
-  // not touching).
-  f = p.mass[i] * (params.gravity + Vec3::Zero());
-  t = Vec3::Zero();
+  // Mere candidates are skipped (they hold exact zeros, ContactList), here and in the block sums,
+  // so the candidate set, which depends on when the list was rebuilt, never changes a bit of the
+  // result. Summed in the particle's fixed entry order (index_contacts_per_particle): the same
+  // bits for any thread count. Skipping reads a byte per candidate instead of 48 (most candidates
+  // of a dense bed are not touching).
+  f = p.mass[i] * params.gravity + block_force_[i];
+  t = block_torque_[i];
   for (int e = csr_start_[i]; e < csr_start_[i + 1]; ++e) {
     const unsigned code = static_cast<unsigned>(csr_entry_[e]);
     const long k = code >> 1;

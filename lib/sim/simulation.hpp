@@ -25,13 +25,18 @@ struct SimParams {
                                      // the contacts found do not depend on it
   // Storage order: every sort_every steps (at steps that are multiples of it, so that a resumed run
   // sorts where an uninterrupted one does), samples of at least sort_min_particles are put in the
-  // order of a grid of cells, so that neighbours sit close in memory. Speed only: no result
-  // depends on the storage order (ids, not slots, order every sum). 0 = never. The pair lists
+  // order of a grid of cells, so that neighbours sit close in memory. 0 = never. The pair lists
   // follow the storage order, so both the particle and the contact loops become local: a
   // 100,000-sphere gen-primary settle to t = 0.4 s took 134 s sorted every 1,000 steps against 204 s
-  // never sorted (bench/results/locality.md).
+  // never sorted (bench/results/locality.md). The storage order sets the order in which each
+  // particle's contact forces are added (load_block), so another order changes the last bits
+  // (never the thread count, nor a restart: checkpoints keep the storage order).
   long sort_every = 1000;
   long sort_min_particles = 10000;
+  // Storage slots per block of the force sums (sim/force_loop.hpp BlockLoads): contacts within a
+  // block are added to both particles by the force loop, the few across blocks afterwards. Speed
+  // only, within the last bits; blocks are the unit of work of a thread.
+  long load_block = 4096;
 };
 
 // What the particles exert on one wall element this step.
@@ -111,7 +116,8 @@ class Simulation {
   void find_contacts();
   void count_bonds();
   void index_contacts_per_particle();
-  // The net force and torque on particle i from gravity and its contacts (eq. 2.31-2.34).
+  // The net force and torque on particle i from gravity and its contacts (eq. 2.31-2.34): the sums
+  // of its block's contacts, then those across blocks, then its walls.
   void net_load(long i, Vec3& force, Vec3& torque) const;
   void integrate(bool any_fixed);
 
@@ -128,8 +134,11 @@ class Simulation {
   mutable bool pair_view_current_ = false, wall_view_current_ = false;
   void contacts_modified();  // the views must be compacted again
   std::vector<WallGeometry> wall_geometry_;
-  // Per-particle lists of candidate entries in a fixed order, rebuilt with the neighbour list.
+  // Per-particle lists of the candidates net_load sums (pairs across blocks, walls) in a fixed
+  // order, rebuilt with the neighbour list.
   std::vector<int> csr_start_, csr_entry_, csr_fill_;
+  std::vector<long> block_first_;  // first pair candidate of each load block, then the end
+  std::vector<Vec3> block_force_, block_torque_;  // per slot, the sums of the contacts within its block
   std::vector<int> wall_runs_;  // first wall candidate of each particle, then the end
 };
 
