@@ -32,6 +32,27 @@ struct ContactLaw {
   // rotated into the current tangent plane and updated in place; `bonded` is Φ, cleared when the
   // bond breaks.
   [[gnu::always_inline]] static ContactForce evaluate(const PairParams& p, const ContactKinematics& c, double dt, Vec3& spring, std::uint8_t& bonded) {
+    spring = in_tangent_plane(spring, c.n);
+    return evaluate_in_plane(p, c, dt, spring, bonded);
+  }
+
+  // The spring turned into the tangent plane of normal n, keeping its magnitude (the first part
+  // of evaluate). Apart so that a force loop can turn the springs of many contacts before it
+  // evaluates them: the division and square root here, and the ones that find n, then overlap
+  // across contacts instead of each contact waiting for its own.
+  [[gnu::always_inline]] static Vec3 in_tangent_plane(const Vec3& spring, const Vec3& n) {
+    const double s2 = spring.squaredNorm();
+    Vec3 s = spring - spring.dot(n) * n;
+    if (s2 > 0) {
+      const double t2 = s.squaredNorm();
+      if (t2 > 0) s *= std::sqrt(s2 / t2);
+    }
+    return s;
+  }
+
+  // evaluate, for a spring already in the tangent plane (in_tangent_plane).
+  [[gnu::always_inline]] static ContactForce evaluate_in_plane(const PairParams& p, const ContactKinematics& c, double dt, Vec3& spring,
+                                                               std::uint8_t& bonded) {
     const Vec3& n = c.n;
     const double vn = c.v_rel.dot(n);  // > 0 when separating
     bool broken = false;
@@ -47,13 +68,7 @@ struct ContactLaw {
 
     // Tangential relative velocity at the contact point, eq. 2.12.
     const Vec3 vt = c.v_rel - vn * n - c.w_arm.cross(n);
-    // Keep the spring in the current tangent plane, preserving its magnitude.
-    const double s2 = spring.squaredNorm();
-    Vec3 s = spring - spring.dot(n) * n;
-    if (s2 > 0) {
-      const double t2 = s.squaredNorm();
-      if (t2 > 0) s *= std::sqrt(s2 / t2);
-    }
+    const Vec3 s = spring;  // in the tangent plane
     // Trial force (eq. 2.13-2.15): i is dragged along the motion of j relative to i.
     const Vec3 trial = s + p.kt * dt * vt;
     // Failure surface (fig. 2.13): Mohr-Coulomb with cohesion on bonded contacts, classic

@@ -42,32 +42,50 @@ double pair_chunk(const ForceLoopInput& in, ContactList& pc, BlockLoads& out, lo
     const int i = pc.slot_i[k], j = pc.slot_j[k];
     const std::uint8_t was = pc.active[k];
     const Vec3 d = separation<Periodic>(p, in.periodic, i, j);
-    pc.active[k] = spheres_touch(d, p.radius[i], p.radius[j]) || pc.bonded[k];
+    // Bitwise, not ||: whether a candidate touches is a coin toss to the branch predictor.
+    std::uint8_t now = static_cast<std::uint8_t>(spheres_touch(d, p.radius[i], p.radius[j])) | pc.bonded[k];
     if constexpr (Fixed) {
       // A bond between two held particles is dropped too, so that nothing depends on when the
       // list was last rebuilt.
-      if (p.both_fixed(i, j)) pc.active[k] = 0, pc.bonded[k] = 0;
+      const std::uint8_t free = !(p.fixed[i] & p.fixed[j]);
+      now &= free;
+      pc.bonded[k] &= free;
     }
+    pc.active[k] = now;
     contact[m] = static_cast<int>(k);
     separations[m] = d;
-    m += pc.active[k];
+    m += now;
     // A candidate that was no contact already holds zeros (ContactList): in a dense bed most
     // candidates are such, and rewriting their 72 bytes every step cost memory bandwidth.
-    if (!pc.active[k] && was) pc.spring[k] = Vec3::Zero(), pc.sum[k] = ContactSum();
+    if (!now && was) pc.spring[k] = Vec3::Zero(), pc.sum[k] = ContactSum();
   }
+  // Pass 2, in three loops over the chunk's contacts: their kinematics, their springs turned into
+  // the tangent plane, the law. Each loop is short and its contacts independent, so the processor
+  // overlaps the divisions and square roots of several contacts; in one long loop each contact
+  // waited for its own (a chain of four).
+  ContactKinematics kin[kChunk];
   for (int e = 0; e < m; ++e) {
     const long k = contact[e];
     const int i = pc.slot_i[k], j = pc.slot_j[k];
     const Vec3& d = separations[e];
     const double dist = d.norm();
-    ContactKinematics c;
+    ContactKinematics& c = kin[e];
     c.n = d * (1.0 / dist);
     c.overlap = p.radius[i] + p.radius[j] - dist;  // eq. 2.11
     c.v_rel = p.v[j] - p.v[i];
     c.w_arm = p.radius[j] * p.w[j] + p.radius[i] * p.w[i];
     c.m_eff = effective_mass<Fixed>(p, i, j);
+  }
+  for (int e = 0; e < m; ++e) {
+    const long k = contact[e];
+    pc.spring[k] = ContactLaw<Normal>::in_tangent_plane(pc.spring[k], kin[e].n);
+  }
+  for (int e = 0; e < m; ++e) {
+    const long k = contact[e];
+    const int i = pc.slot_i[k], j = pc.slot_j[k];
+    const ContactKinematics& c = kin[e];
     const ContactForce f =
-        ContactLaw<Normal>::evaluate(in.materials.pair(p.material[i], p.material[j]), c, in.dt, pc.spring[k], pc.bonded[k]);
+        ContactLaw<Normal>::evaluate_in_plane(in.materials.pair(p.material[i], p.material[j]), c, in.dt, pc.spring[k], pc.bonded[k]);
     const Vec3 moment = c.n.cross(f.tangential);
     pc.normal[k] = c.n;
     pc.sum[k] = {f.on_i, moment};
