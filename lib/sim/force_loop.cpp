@@ -1,5 +1,7 @@
 #include "sim/force_loop.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -11,10 +13,10 @@ namespace dem {
 namespace {
 
 // Each contact and each block of particles is written by one thread only; no atomics (DESIGN.md).
-// Each thread takes a contiguous run of blocks (static schedule), as it takes a contiguous run of
-// particles in the integration: candidates stored along the particles' order, so a thread mostly
-// reads particles that stay in its own core's cache. (Chunks dealt in turn balanced the threads
-// better but made the cores trade cache lines every step: 40 % slower on 2 cores.)
+// Each thread takes a contiguous run of blocks, as it takes a contiguous run of particles in the
+// integration: candidates stored along the particles' order, so a thread mostly reads particles
+// that stay in its own core's cache. (Chunks dealt in turn balanced the threads better but made
+// the cores trade cache lines every step: 40 % slower on 2 cores.)
 // Each loop also returns the largest overlap relative to the smaller radius (a stability check).
 constexpr long kChunk = 256;  // candidates per pass-1/pass-2 chunk
 
@@ -105,13 +107,23 @@ double pair_forces(const ForceLoopInput& in, ContactList& pc, BlockLoads& out) {
   const long blocks = static_cast<long>(out.first.size()) - 1;
   const long slots = static_cast<long>(in.particles.size());
   double worst = 0;
-#pragma omp parallel for schedule(static) reduction(max : worst)
-  for (long b = 0; b < blocks; ++b) {
-    const int block_end = static_cast<int>(std::min(slots, (b + 1) * out.block));
-    for (int s = static_cast<int>(b * out.block); s < block_end; ++s) out.force[s] = out.torque[s] = Vec3::Zero();
-    for (long first = out.first[b]; first < out.first[b + 1]; first += kChunk) {
-      const long last = std::min(out.first[b + 1], first + kChunk);
-      worst = std::max(worst, pair_chunk<Normal, Periodic, Fixed>(in, pc, out, first, last, block_end));
+#pragma omp parallel reduction(max : worst)
+  {
+    // Each thread takes a contiguous run of blocks holding about its share of the candidates (the
+    // work: contacts crowd where a sample has settled, particle counts would balance badly).
+    // Which thread sums a block changes no bit.
+    const long threads = omp_get_num_threads(), t = omp_get_thread_num();
+    const long total = out.first[blocks];
+    auto run_start = [&](long u) {
+      return u == threads ? blocks : std::lower_bound(out.first.begin(), out.first.end() - 1, total * u / threads) - out.first.begin();
+    };
+    for (long b = run_start(t); b < run_start(t + 1); ++b) {
+      const int block_end = static_cast<int>(std::min(slots, (b + 1) * out.block));
+      for (int s = static_cast<int>(b * out.block); s < block_end; ++s) out.force[s] = out.torque[s] = Vec3::Zero();
+      for (long first = out.first[b]; first < out.first[b + 1]; first += kChunk) {
+        const long last = std::min(out.first[b + 1], first + kChunk);
+        worst = std::max(worst, pair_chunk<Normal, Periodic, Fixed>(in, pc, out, first, last, block_end));
+      }
     }
   }
   return worst;

@@ -19,6 +19,7 @@ void Simulation::advance() {
   find_contacts();
   const bool any_fixed = std::find(particles.fixed.begin(), particles.fixed.end(), 1) != particles.fixed.end();
   const ForceLoopInput in{particles, materials, walls, wall_geometry_, wall_runs_, periodic, any_fixed, dt};
+  if (indexed_block_ != params.load_block) index_contacts_per_particle();  // load_block changed
   block_force_.resize(particles.size());
   block_torque_.resize(particles.size());
   BlockLoads loads{params.load_block, block_first_, block_force_, block_torque_};
@@ -213,16 +214,18 @@ void Simulation::index_contacts_per_particle() {
   const long nwc = static_cast<long>(walls_.size());
   // Load blocks: candidates are stored grouped by their smaller slot, in slot order
   // (place_by_storage), so each block's candidates form one run.
-  const long block = std::max(1L, params.load_block);
+  if (params.load_block < 1) throw std::invalid_argument("SimParams::load_block must be at least 1");
+  const long block = params.load_block;
   const long blocks = (static_cast<long>(n) + block - 1) / block;
   auto lower_slot = [&](long k) { return std::min(pairs_.slot_i[k], pairs_.slot_j[k]); };
   auto across_blocks = [&](long k) { return pairs_.slot_i[k] / block != pairs_.slot_j[k] / block; };
   block_first_.resize(blocks + 1);
   for (long b = 0, k = 0; b <= blocks; ++b) {
-    while (k < npc && lower_slot(k) < b * block) ++k;
+    for (; k < npc && lower_slot(k) < b * block; ++k)
+      if (lower_slot(k) < (b - 1) * block) throw std::logic_error("pair candidates not stored along the slots");
     block_first_[b] = k;
   }
-  if (block_first_[blocks] != npc) throw std::logic_error("pair candidates not stored along the slots");
+  indexed_block_ = block;
   // Per-particle lists of the other entries in a fixed order (pairs across blocks by key, then
   // walls), so that the sums of net_load give the same bits for any thread count. Entry codes:
   // 2k = pair k seen from i, 2k+1 = seen from j, 2(npc+k) = wall candidate k.
