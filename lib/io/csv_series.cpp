@@ -1,6 +1,7 @@
 #include "io/csv_series.hpp"
 
 #include <cerrno>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
@@ -26,8 +27,16 @@ CsvSeries::CsvSeries(const std::string& path, const std::string& header, const s
         if (end != line.c_str() && *end == ',' && step <= resume_step) kept += line + "\n";
       }
   }
-  file_ = std::fopen(partial_.c_str(), "w");
-  if (!file_ || std::fputs(kept.c_str(), file_) < 0 || std::fflush(file_) != 0) fail(partial_, "write");
+  // The kept rows go to a new file that replaces the partial one whole: a run killed while
+  // writing them leaves the old partial file, whose rows the next restart keeps again (written in
+  // place, a kill between truncating and writing lost every row).
+  const std::string fresh = partial_ + ".tmp";
+  std::FILE* f = std::fopen(fresh.c_str(), "w");
+  if (!f) fail(fresh, "write");
+  const bool written = std::fputs(kept.c_str(), f) >= 0 && std::fflush(f) == 0;
+  if ((std::fclose(f) != 0) | !written || std::rename(fresh.c_str(), partial_.c_str()) != 0) fail(fresh, "write");
+  file_ = std::fopen(partial_.c_str(), "a");
+  if (!file_) fail(partial_, "write");
 }
 
 CsvSeries::~CsvSeries() {
