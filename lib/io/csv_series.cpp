@@ -34,7 +34,8 @@ CsvSeries::CsvSeries(const std::string& path, const std::string& header, const s
   std::FILE* f = std::fopen(fresh.c_str(), "w");
   if (!f) fail(fresh, "write");
   const bool written = std::fputs(kept.c_str(), f) >= 0 && std::fflush(f) == 0;
-  if ((std::fclose(f) != 0) | !written || std::rename(fresh.c_str(), partial_.c_str()) != 0) fail(fresh, "write");
+  const bool closed = std::fclose(f) == 0;  // always closed, even after a failed write
+  if (!written || !closed || std::rename(fresh.c_str(), partial_.c_str()) != 0) fail(fresh, "write");
   file_ = std::fopen(partial_.c_str(), "a");
   if (!file_) fail(partial_, "write");
 }

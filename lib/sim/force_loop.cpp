@@ -49,7 +49,7 @@ double pair_chunk(const ForceLoopInput& in, ContactList& pc, BlockLoads& out, lo
     if constexpr (Fixed) {
       // A bond between two held particles is dropped too, so that nothing depends on when the
       // list was last rebuilt.
-      const std::uint8_t free = !(p.fixed[i] & p.fixed[j]);
+      const std::uint8_t free = !p.both_fixed(i, j);
       now &= free;
       pc.bonded[k] &= free;
     }
