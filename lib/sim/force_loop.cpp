@@ -32,7 +32,29 @@ inline double relative_overlap_if_larger(double overlap, double radius, double w
 // parameters so that a scene without them pays nothing.
 template <class Normal, bool Periodic, bool Fixed>
 double pair_chunk(const ForceLoopInput& in, ContactList& pc, BlockLoads& out, long first, long last, int block_end) {
+  // The arrays' addresses and the box in locals: the loop stores bytes (active, bonded), and a byte
+  // store may change any memory for the compiler, the vectors' own fields included; reading through
+  // the vectors it reloaded every array's address after each such store.
   const Particles& p = in.particles;
+  const Vec3* const x = p.x.data();
+  const Vec3* const v = p.v.data();
+  const Vec3* const w = p.w.data();
+  const double* const radius = p.radius.data();
+  const double* const mass = p.mass.data();
+  const int* const material = p.material.data();
+  const std::uint8_t* const fixed = p.fixed.data();
+  const int* const slot_i = pc.slot_i.data();
+  const int* const slot_j = pc.slot_j.data();
+  std::uint8_t* const active = pc.active.data();
+  std::uint8_t* const bonded = pc.bonded.data();
+  Vec3* const spring = pc.spring.data();
+  Vec3* const normal = pc.normal.data();
+  ContactSum* const sum = pc.sum.data();
+  Vec3* const force = out.force.data();
+  Vec3* const torque = out.torque.data();
+  const PeriodicBox box = in.periodic;
+  const MaterialTable& materials = in.materials;
+  const double dt = in.dt;
   double worst = 0;
   // Pass 1: which candidates are contacts (touching, or held by a bond). The others get no force
   // and lose their history. Pass 2 then runs the law without an unpredictable branch, on the
@@ -41,25 +63,25 @@ double pair_chunk(const ForceLoopInput& in, ContactList& pc, BlockLoads& out, lo
   Vec3 separations[kChunk];
   int m = 0;
   for (long k = first; k < last; ++k) {
-    const int i = pc.slot_i[k], j = pc.slot_j[k];
-    const std::uint8_t was = pc.active[k];
-    const Vec3 d = separation<Periodic>(p, in.periodic, i, j);
+    const int i = slot_i[k], j = slot_j[k];
+    const std::uint8_t was = active[k];
+    const Vec3 d = Periodic ? box.nearest(x[j] - x[i]) : Vec3(x[j] - x[i]);
     // Bitwise, not ||: whether a candidate touches is a coin toss to the branch predictor.
-    std::uint8_t now = static_cast<std::uint8_t>(spheres_touch(d, p.radius[i], p.radius[j])) | pc.bonded[k];
+    std::uint8_t now = static_cast<std::uint8_t>(spheres_touch(d, radius[i], radius[j])) | bonded[k];
     if constexpr (Fixed) {
       // A bond between two held particles is dropped too, so that nothing depends on when the
       // list was last rebuilt.
-      const std::uint8_t free = !p.both_fixed(i, j);
+      const std::uint8_t free = !(fixed[i] & fixed[j]);
       now &= free;
-      pc.bonded[k] &= free;
+      bonded[k] &= free;
     }
-    pc.active[k] = now;
+    active[k] = now;
     contact[m] = static_cast<int>(k);
     separations[m] = d;
     m += now;
     // A candidate that was no contact already holds zeros (ContactList): in a dense bed most
     // candidates are such, and rewriting their 72 bytes every step cost memory bandwidth.
-    if (!now && was) pc.spring[k] = Vec3::Zero(), pc.sum[k] = ContactSum();
+    if (!now && was) spring[k] = Vec3::Zero(), sum[k] = ContactSum();
   }
   // Pass 2, in three loops over the chunk's contacts: their kinematics, their springs turned into
   // the tangent plane, the law. Each loop is short and its contacts independent, so the processor
@@ -68,36 +90,35 @@ double pair_chunk(const ForceLoopInput& in, ContactList& pc, BlockLoads& out, lo
   ContactKinematics kin[kChunk];
   for (int e = 0; e < m; ++e) {
     const long k = contact[e];
-    const int i = pc.slot_i[k], j = pc.slot_j[k];
+    const int i = slot_i[k], j = slot_j[k];
     const Vec3& d = separations[e];
     const double dist = d.norm();
     ContactKinematics& c = kin[e];
     c.n = d * (1.0 / dist);
-    c.overlap = p.radius[i] + p.radius[j] - dist;  // eq. 2.11
-    c.v_rel = p.v[j] - p.v[i];
-    c.w_arm = p.radius[j] * p.w[j] + p.radius[i] * p.w[i];
-    c.m_eff = effective_mass<Fixed>(p, i, j);
+    c.overlap = radius[i] + radius[j] - dist;  // eq. 2.11
+    c.v_rel = v[j] - v[i];
+    c.w_arm = radius[j] * w[j] + radius[i] * w[i];
+    c.m_eff = effective_mass(mass[i], mass[j], Fixed && fixed[i], Fixed && fixed[j]);
   }
   for (int e = 0; e < m; ++e) {
     const long k = contact[e];
-    pc.spring[k] = ContactLaw<Normal>::in_tangent_plane(pc.spring[k], kin[e].n);
+    spring[k] = ContactLaw<Normal>::in_tangent_plane(spring[k], kin[e].n);
   }
   for (int e = 0; e < m; ++e) {
     const long k = contact[e];
-    const int i = pc.slot_i[k], j = pc.slot_j[k];
+    const int i = slot_i[k], j = slot_j[k];
     const ContactKinematics& c = kin[e];
-    const ContactForce f =
-        ContactLaw<Normal>::evaluate_in_plane(in.materials.pair(p.material[i], p.material[j]), c, in.dt, pc.spring[k], pc.bonded[k]);
+    const ContactForce f = ContactLaw<Normal>::evaluate_in_plane(materials.pair(material[i], material[j]), c, dt, spring[k], bonded[k]);
     const Vec3 moment = c.n.cross(f.tangential);
-    pc.normal[k] = c.n;
-    pc.sum[k] = {f.on_i, moment};
+    normal[k] = c.n;
+    sum[k] = {f.on_i, moment};
     if (std::max(i, j) < block_end) {  // both in this block (the smaller slot always is)
-      out.force[i] += f.on_i;          // eq. 2.31-2.32
-      out.force[j] -= f.on_i;
-      out.torque[i] += p.radius[i] * moment;  // eq. 2.33-2.34: a n x f_t for i and j alike
-      out.torque[j] += p.radius[j] * moment;
+      force[i] += f.on_i;              // eq. 2.31-2.32
+      force[j] -= f.on_i;
+      torque[i] += radius[i] * moment;  // eq. 2.33-2.34: a n x f_t for i and j alike
+      torque[j] += radius[j] * moment;
     }
-    worst = std::max(worst, relative_overlap_if_larger(c.overlap, std::min(p.radius[i], p.radius[j]), worst));
+    worst = std::max(worst, relative_overlap_if_larger(c.overlap, std::min(radius[i], radius[j]), worst));
   }
   return worst;
 }

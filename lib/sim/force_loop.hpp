@@ -58,13 +58,10 @@ inline Vec3 separation(const Particles& p, const PeriodicBox& box, int i, int j)
 
 // The mass of eq. 2.26's damping for a pair: m_i m_j / (m_i + m_j), or against a particle held in
 // place (infinitely heavy, as in LAMMPS's fix freeze) the other's mass.
-template <bool Fixed>
-inline double effective_mass(const Particles& p, int i, int j) {
-  if constexpr (Fixed) {
-    if (p.fixed[i]) return p.mass[j];
-    if (p.fixed[j]) return p.mass[i];
-  }
-  return p.mass[i] * p.mass[j] / (p.mass[i] + p.mass[j]);
+inline double effective_mass(double mass_i, double mass_j, bool fixed_i, bool fixed_j) {
+  if (fixed_i) return mass_j;
+  if (fixed_j) return mass_i;
+  return mass_i * mass_j / (mass_i + mass_j);
 }
 
 // Whether a candidate touches now: the test that makes it a contact (with a bond, so does holding).

@@ -252,53 +252,68 @@ void Simulation::index_contacts_per_particle() {
   wall_runs_.push_back(static_cast<int>(nwc));
 }
 
-void Simulation::net_load(long i, Vec3& f, Vec3& t) const {
-  const Particles& p = particles;
-  const long npc = static_cast<long>(pairs_.size());
-  // Mere candidates are skipped (they hold exact zeros, ContactList), here and in the block sums,
-  // so the candidate set, which depends on when the list was rebuilt, never changes a bit of the
-  // result. Summed in the particle's fixed entry order (index_contacts_per_particle): the same
-  // bits for any thread count. Skipping reads a byte per candidate instead of 48 (most candidates
-  // of a dense bed are not touching).
-  f = p.mass[i] * params.gravity + block_force_[i];
-  t = block_torque_[i];
-  for (int e = csr_start_[i]; e < csr_start_[i + 1]; ++e) {
-    const unsigned code = static_cast<unsigned>(csr_entry_[e]);
-    const long k = code >> 1;
-    const bool pair = k < npc;
-    if (!(pair ? pairs_.active[k] : walls_.active[k - npc])) continue;
-    // Torques, eq. 2.33-2.34: M = a n x f_t for i and j alike (M_j = (a_j / a_i) M_i).
-    const ContactSum& c = pair ? pairs_.sum[k] : walls_.sum[k - npc];
-    f += (code & 1) ? Vec3(-c.force) : c.force;  // eq. 2.31-2.32
-    t += p.radius[i] * c.moment;
-  }
-}
-
 void Simulation::integrate(bool any_fixed) {
-  Particles& p = particles;
   // eq. 2.38-2.47: v^{n+1/2} = (a v^{n-1/2} + acc dt) b, a = 1 - alpha dt/2, b = 1/(1 + alpha dt/2).
   const double ar = 1 - params.alpha_r * dt / 2, br = 1 / (1 + params.alpha_r * dt / 2);
   const double at = 1 - params.alpha_theta * dt / 2, bt = 1 / (1 + params.alpha_theta * dt / 2);
-  const long n = static_cast<long>(p.size());
-  const bool wrap = periodic.any();
+  const double step_dt = dt;
+  const Vec3 gravity = params.gravity;
+  const long n = static_cast<long>(particles.size());
+  const PeriodicBox box = periodic;
+  const bool wrap = box.any();
+  // The arrays' addresses in locals: stores of positions and velocities (doubles) could change the
+  // box, gravity or dt for the compiler, which then reloaded them for every particle.
+  Vec3* const x = particles.x.data();
+  Vec3* const v = particles.v.data();
+  Vec3* const w = particles.w.data();
+  Vec3i* const image = particles.image.data();
+  const double* const mass = particles.mass.data();
+  const double* const radius = particles.radius.data();
+  const std::uint8_t* const fixed = particles.fixed.data();
+  const Vec3* const block_force = block_force_.data();
+  const Vec3* const block_torque = block_torque_.data();
+  const int* const csr_start = csr_start_.data();
+  const int* const csr_entry = csr_entry_.data();
+  const std::uint8_t* const pair_active = pairs_.active.data();
+  const std::uint8_t* const wall_active = walls_.active.data();
+  const ContactSum* const pair_sum = pairs_.sum.data();
+  const ContactSum* const wall_sum = walls_.sum.data();
+  const long npc = static_cast<long>(pairs_.size());
   long bad = -1;
   // One pass: each particle's loads are summed and used at once (no per-particle force arrays to
   // write and read back: this loop is bound by memory traffic at 1e5 particles and more).
 #pragma omp parallel for schedule(static) reduction(max : bad)
   for (long i = 0; i < n; ++i) {
-    if (any_fixed && p.fixed[i]) {  // held in place
-      p.v[i] = p.w[i] = Vec3::Zero();
+    if (any_fixed && fixed[i]) {  // held in place
+      v[i] = w[i] = Vec3::Zero();
       continue;
     }
-    Vec3 force, torque;
-    net_load(i, force, torque);
-    p.v[i] = (ar * p.v[i] + force * (dt / p.mass[i])) * br;
-    p.w[i] = (at * p.w[i] + torque * (dt / p.inertia(i))) * bt;
-    p.x[i] += p.v[i] * dt;
-    if (wrap) periodic.wrap(p.x[i], p.image[i]);
-    if (!p.x[i].allFinite() || !p.v[i].allFinite() || !p.w[i].allFinite()) bad = std::max(bad, i);
+    // The net load (eq. 2.31-2.34): gravity, the sums of the particle's block's contacts, then its
+    // entries across blocks and its walls, in the fixed order of index_contacts_per_particle: the
+    // same bits for any thread count. Mere candidates are skipped (they hold exact zeros,
+    // ContactList), here and in the block sums, so the candidate set, which depends on when the
+    // list was rebuilt, never changes a bit of the result; skipping reads a byte per candidate
+    // instead of 48.
+    Vec3 force = mass[i] * gravity + block_force[i];
+    Vec3 torque = block_torque[i];
+    for (int e = csr_start[i]; e < csr_start[i + 1]; ++e) {
+      const unsigned code = static_cast<unsigned>(csr_entry[e]);
+      const long k = code >> 1;
+      const bool pair = k < npc;
+      if (!(pair ? pair_active[k] : wall_active[k - npc])) continue;
+      // Torques, eq. 2.33-2.34: M = a n x f_t for i and j alike (M_j = (a_j / a_i) M_i).
+      const ContactSum& c = pair ? pair_sum[k] : wall_sum[k - npc];
+      force += (code & 1) ? Vec3(-c.force) : c.force;  // eq. 2.31-2.32
+      torque += radius[i] * c.moment;
+    }
+    v[i] = (ar * v[i] + force * (step_dt / mass[i])) * br;
+    w[i] = (at * w[i] + torque * (step_dt / sphere_inertia(mass[i], radius[i]))) * bt;
+    x[i] += v[i] * step_dt;
+    if (wrap) box.wrap(x[i], image[i]);
+    if (!x[i].allFinite() || !v[i].allFinite() || !w[i].allFinite()) bad = std::max(bad, i);
   }
   if (bad >= 0) {
+    const Particles& p = particles;
     std::ostringstream m;
     m << "non-finite state at step " << step << " (t = " << time << " s) for particle id " << p.id[bad]
       << "; check the time step (dt = " << dt << " s, critical " << critical_time_step()

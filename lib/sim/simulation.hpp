@@ -117,9 +117,6 @@ class Simulation {
   void find_contacts();
   void count_bonds();
   void index_contacts_per_particle();
-  // The net force and torque on particle i from gravity and its contacts (eq. 2.31-2.34): the sums
-  // of its block's contacts, then those across blocks, then its walls.
-  void net_load(long i, Vec3& force, Vec3& torque) const;
   void integrate(bool any_fixed);
 
   bool has_bonds_ = false;

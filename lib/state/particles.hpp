@@ -12,6 +12,7 @@ namespace dem {
 
 inline double sphere_volume(double a) { return 4.0 / 3.0 * std::numbers::pi * a * a * a; }
 inline double sphere_mass(double density, double a) { return density * sphere_volume(a); }  // m = rho 4/3 pi a^3
+inline double sphere_inertia(double m, double a) { return 0.4 * m * a * a; }  // I = 2/5 m a^2
 
 struct Particles {
   std::vector<Index> id;
@@ -45,7 +46,7 @@ struct Particles {
   // Two held particles never interact (the search skips such pairs, the force loop drops them).
   bool both_fixed(std::size_t i, std::size_t j) const { return fixed[i] && fixed[j]; }
 
-  double inertia(std::size_t k) const { return 0.4 * mass[k] * radius[k] * radius[k]; }  // I = 2/5 m a^2
+  double inertia(std::size_t k) const { return sphere_inertia(mass[k], radius[k]); }
 
   // Keep the particles for which keep[k] is true, preserving storage order.
   void keep_only(const std::vector<bool>& keep);
