@@ -37,7 +37,7 @@ struct ContactList {
   // The tangential part f_t of force(k): (n x f_t) x n, since f_t lies in the tangent plane.
   Vec3 tangential(std::size_t k) const { return sum[k].moment.cross(normal[k]); }
   void clear() { resize(0); }
-  void resize(std::size_t n);  // to exactly n entries' room when it grows
+  void resize(std::size_t n);  // with an eighth more room when it grows
   void reserve(std::size_t n);
   // Appends entry k of `from` (all fields).
   void push_back_from(const ContactList& from, std::size_t k);

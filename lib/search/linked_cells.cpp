@@ -135,7 +135,8 @@ void LinkedCells::find_near_walls(const Particles& p, const std::vector<WallGeom
   {
     std::vector<FoundContact>& mine = per_thread_[omp_get_thread_num()];
     mine.clear();
-#pragma omp for schedule(dynamic, 16)
+    // One element at a time: a box has six walls, each covering thousands of cells.
+#pragma omp for schedule(dynamic, 1)
     for (long w = 0; w < nw; ++w) {
       const WallGeometry& g = walls[w];
       Vec3 blo = g.vertices[0], bhi = g.vertices[0];

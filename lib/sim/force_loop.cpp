@@ -150,8 +150,10 @@ double pair_forces(const ForceLoopInput& in, ContactList& pc, BlockLoads& out) {
   return worst;
 }
 
+// After the pair loop: each particle's wall contacts are added to its loads (one run per particle,
+// so one thread per particle), in the run's order.
 template <class Normal>
-double wall_forces(const ForceLoopInput& in, ContactList& wc) {
+double wall_forces(const ForceLoopInput& in, ContactList& wc, BlockLoads& out) {
   const Particles& p = in.particles;
   const long runs = static_cast<long>(in.wall_runs.size()) - 1;
   double worst = 0;
@@ -205,9 +207,12 @@ double wall_forces(const ForceLoopInput& in, ContactList& wc) {
         c.m_eff = p.mass[i];
         const ContactForce f = ContactLaw<Normal>::evaluate(in.materials.pair(p.material[i], in.walls[wc.slot_j[k]].material), c,
                                                             in.dt, wc.spring[k], wc.bonded[k]);
+        const Vec3 moment = c.n.cross(f.tangential);
         wc.active[k] = 1;
         wc.normal[k] = c.n;
-        wc.sum[k] = {f.on_i, c.n.cross(f.tangential)};
+        wc.sum[k] = {f.on_i, moment};
+        out.force[i] += f.on_i;  // eq. 2.31
+        out.torque[i] += p.radius[i] * moment;  // eq. 2.33
         worst = std::max(worst, relative_overlap_if_larger(c.overlap, p.radius[i], worst));
       }
     }
@@ -222,7 +227,7 @@ double all_forces(const ForceLoopInput& in, ContactList& pairs, ContactList& wal
     worst_pair = in.any_fixed ? pair_forces<Normal, true, true>(in, pairs, loads) : pair_forces<Normal, true, false>(in, pairs, loads);
   else
     worst_pair = in.any_fixed ? pair_forces<Normal, false, true>(in, pairs, loads) : pair_forces<Normal, false, false>(in, pairs, loads);
-  return std::max(worst_pair, wall_forces<Normal>(in, walls));
+  return std::max(worst_pair, wall_forces<Normal>(in, walls, loads));
 }
 
 }  // namespace

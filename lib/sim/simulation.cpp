@@ -226,13 +226,12 @@ void Simulation::index_contacts_per_particle() {
     block_first_[b] = k;
   }
   indexed_block_ = block;
-  // Per-particle lists of the other entries in a fixed order (pairs across blocks by key, then
-  // walls), so that the sums of net_load give the same bits for any thread count. Entry codes:
-  // 2k = pair k seen from i, 2k+1 = seen from j, 2(npc+k) = wall candidate k.
+  // Per-particle lists of the pair candidates across blocks, by key, so that their sums in
+  // integrate() give the same bits for any thread count (the force loop adds the rest). Entry
+  // codes: 2k = pair k seen from i, 2k+1 = seen from j.
   csr_start_.assign(n + 1, 0);
   for (long k = 0; k < npc; ++k)
     if (across_blocks(k)) ++csr_start_[pairs_.slot_i[k] + 1], ++csr_start_[pairs_.slot_j[k] + 1];
-  for (long k = 0; k < nwc; ++k) ++csr_start_[walls_.slot_i[k] + 1];
   for (std::size_t k = 0; k < n; ++k) csr_start_[k + 1] += csr_start_[k];
   if (static_cast<std::size_t>(csr_start_[n]) > csr_entry_.capacity()) csr_entry_.reserve(csr_start_[n]);  // no doubling
   csr_entry_.resize(csr_start_[n]);
@@ -243,7 +242,6 @@ void Simulation::index_contacts_per_particle() {
     csr_entry_[csr_fill_[pairs_.slot_i[k]]++] = static_cast<int>(2 * k);
     csr_entry_[csr_fill_[pairs_.slot_j[k]]++] = static_cast<int>(2 * k + 1);
   }
-  for (long k = 0; k < nwc; ++k) csr_entry_[csr_fill_[walls_.slot_i[k]]++] = static_cast<int>(2 * (npc + k));
   // Wall candidates are sorted by particle id: each particle's form one run, taken together by the
   // wall force loop (where mesh elements meet, one touch must count once).
   wall_runs_.clear();
@@ -274,11 +272,8 @@ void Simulation::integrate(bool any_fixed) {
   const Vec3* const block_torque = block_torque_.data();
   const int* const csr_start = csr_start_.data();
   const int* const csr_entry = csr_entry_.data();
-  const std::uint8_t* const pair_active = pairs_.active.data();
-  const std::uint8_t* const wall_active = walls_.active.data();
-  const ContactSum* const pair_sum = pairs_.sum.data();
-  const ContactSum* const wall_sum = walls_.sum.data();
-  const long npc = static_cast<long>(pairs_.size());
+  const std::uint8_t* const active = pairs_.active.data();
+  const ContactSum* const sum = pairs_.sum.data();
   long bad = -1;
   // One pass: each particle's loads are summed and used at once (no per-particle force arrays to
   // write and read back: this loop is bound by memory traffic at 1e5 particles and more).
@@ -288,23 +283,21 @@ void Simulation::integrate(bool any_fixed) {
       v[i] = w[i] = Vec3::Zero();
       continue;
     }
-    // The net load (eq. 2.31-2.34): gravity, the sums of the particle's block's contacts, then its
-    // entries across blocks and its walls, in the fixed order of index_contacts_per_particle: the
-    // same bits for any thread count. Mere candidates are skipped (they hold exact zeros,
-    // ContactList), here and in the block sums, so the candidate set, which depends on when the
-    // list was rebuilt, never changes a bit of the result; skipping reads a byte per candidate
-    // instead of 48.
+    // The net load (eq. 2.31-2.34): gravity, the sums of the force loop (the particle's block's
+    // contacts, then its walls), then its contacts across blocks, in the fixed order of
+    // index_contacts_per_particle: the same bits for any thread count. Mere candidates are skipped
+    // (they hold exact zeros, ContactList), here and in the block sums, so the candidate set,
+    // which depends on when the list was rebuilt, never changes a bit of the result; skipping
+    // reads a byte per candidate instead of 48.
     Vec3 force = mass[i] * gravity + block_force[i];
     Vec3 torque = block_torque[i];
     for (int e = csr_start[i]; e < csr_start[i + 1]; ++e) {
       const unsigned code = static_cast<unsigned>(csr_entry[e]);
       const long k = code >> 1;
-      const bool pair = k < npc;
-      if (!(pair ? pair_active[k] : wall_active[k - npc])) continue;
+      if (!active[k]) continue;
       // Torques, eq. 2.33-2.34: M = a n x f_t for i and j alike (M_j = (a_j / a_i) M_i).
-      const ContactSum& c = pair ? pair_sum[k] : wall_sum[k - npc];
-      force += (code & 1) ? Vec3(-c.force) : c.force;  // eq. 2.31-2.32
-      torque += radius[i] * c.moment;
+      force += (code & 1) ? Vec3(-sum[k].force) : sum[k].force;  // eq. 2.31-2.32
+      torque += radius[i] * sum[k].moment;
     }
     v[i] = (ar * v[i] + force * (step_dt / mass[i])) * br;
     w[i] = (at * w[i] + torque * (step_dt / sphere_inertia(mass[i], radius[i]))) * bt;

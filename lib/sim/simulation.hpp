@@ -132,12 +132,12 @@ class Simulation {
   mutable bool pair_view_current_ = false, wall_view_current_ = false;
   void contacts_modified();  // the views must be compacted again
   std::vector<WallGeometry> wall_geometry_;
-  // Per-particle lists of the candidates net_load sums (pairs across blocks, walls) in a fixed
+  // Per-particle lists of the pair candidates across blocks that integrate() sums, in a fixed
   // order, rebuilt with the neighbour list.
   std::vector<int> csr_start_, csr_entry_, csr_fill_;
   std::vector<long> block_first_;  // first pair candidate of each load block, then the end
   long indexed_block_ = 0;         // the load_block of block_first_ and the per-particle lists
-  std::vector<Vec3> block_force_, block_torque_;  // per slot, the sums of the contacts within its block
+  std::vector<Vec3> block_force_, block_torque_;  // per slot, the sums of its block's contacts and its walls
   std::vector<int> wall_runs_;  // first wall candidate of each particle, then the end
 };
 

@@ -1,0 +1,83 @@
+// The servo law (walls/servo.hpp) against the analytic answer on a plant without chaos: a lid held
+// by n linear springs on a bed whose surface rises towards it at a steady rate r (as a side wall
+// squeezing the sample pushes it up). Proportional control must lag by exactly the error that
+// makes the lid retreat at r; PI control must bring that error to zero. The chaotic squeeze of
+// tests/servo_stage.sh shows the same on real particles, but one run of it cannot tell the two
+// apart reliably (force chains buckle at random); this test can.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "sim/simulation.hpp"
+#include "walls/servo.hpp"
+
+namespace dem {
+namespace {
+
+constexpr double kArea = 4e-4, kTarget = 1000, kStiffness = 5e4, kRate = 1e-3, kDt = 1e-5, kGain = 0.2;
+constexpr int kContacts = 10;
+
+// Runs the lid for `steps` and returns the mean stress over the second half. The compression s of
+// the springs grows by (v + r) dt per step, v the lid's inward speed; the lid feels n k s.
+double mean_stress_second_half(double integral_time, int steps) {
+  ServoGroup g;
+  g.elements = {0};
+  g.inward = Vec3(0, 0, -1);
+  g.area = kArea;
+  g.target = kTarget;
+  g.max_speed = 0.2;
+  g.gain = kGain;
+  g.integral_time = integral_time;
+  double compression = kTarget * kArea / (kContacts * kStiffness);  // at the target to begin with
+  std::vector<WallLoad> loads(1);
+  loads[0].contacts = kContacts;
+  double sum = 0;
+  for (int s = 0; s < steps; ++s) {
+    loads[0].force = -g.inward * (kContacts * kStiffness * compression);  // the bed pushes the lid out
+    if (s >= steps / 2) sum += g.stress(loads);
+    const double v = g.speed(loads, kDt, kStiffness, 0.0);  // no dashpots in this plant: c_max = 0
+    compression += (v + kRate) * kDt;
+  }
+  return sum / (steps - steps / 2);
+}
+
+TEST(Servo, ProportionalLagsByRateOverGainAndIntegralActionRemovesIt) {
+  // Steady state of the proportional servo: the lid must retreat at r, so gain u = -r with
+  // u = (target - stress) area / (n k dt): stress - target = r n k dt / (gain area) = 62.5 Pa.
+  const double lag = kRate * kContacts * kStiffness * kDt / (kGain * kArea);
+  const double p = mean_stress_second_half(0, 20000);
+  // The error decays by (1 - gain) per step: after 10,000 steps nothing of the start is left;
+  // 1e-9 relative allows the round-off of 10,000 sums.
+  EXPECT_NEAR(p - kTarget, lag, 1e-9 * kTarget);
+  // PI (T_i = 300 steps): the integral takes over the speed r; after 30 T_i the mean error of the
+  // second half is a vanishing part of the lag (1e-3 of it asked).
+  const double pi = mean_stress_second_half(0.003, 20000);
+  EXPECT_LT(std::abs(pi - kTarget), 1e-3 * lag) << "PI mean " << pi << " Pa";
+}
+
+TEST(Servo, IntegralActionStaysWithinTheSpeedLimit) {
+  // A rate beyond max_speed cannot be followed: the integral must stop at the limit (anti-windup),
+  // not grow without bound.
+  ServoGroup g;
+  g.elements = {0};
+  g.inward = Vec3(0, 0, -1);
+  g.area = kArea;
+  g.target = kTarget;
+  g.max_speed = 1e-4;  // below kRate
+  g.gain = kGain;
+  g.integral_time = 0.003;
+  std::vector<WallLoad> loads(1);
+  loads[0].contacts = kContacts;
+  double compression = kTarget * kArea / (kContacts * kStiffness);
+  for (int s = 0; s < 20000; ++s) {
+    loads[0].force = -g.inward * (kContacts * kStiffness * compression);
+    const double v = g.speed(loads, kDt, kStiffness, 0.0);
+    EXPECT_LE(std::abs(v), g.max_speed);
+    compression += (v + kRate) * kDt;
+  }
+  EXPECT_LE(std::abs(g.integral), g.max_speed);
+}
+
+}  // namespace
+}  // namespace dem
