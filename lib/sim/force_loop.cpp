@@ -27,11 +27,12 @@ inline double relative_overlap_if_larger(double overlap, double radius, double w
   return overlap >= worst * radius * (1 - 1e-9) ? overlap / radius : 0.0;
 }
 
-// The candidates [first, last) of one block whose slots end before `block_end`. Periodic:
-// distances to the nearest image; Fixed: some particles are held in place. Both are template
-// parameters so that a scene without them pays nothing.
+// The candidates [first, last) of one block; contacts whose two slots lie before `reach_end` (in
+// this block or the next) are added to both particles' loads. Periodic: distances to the nearest
+// image; Fixed: some particles are held in place. Both are template parameters so that a scene
+// without them pays nothing.
 template <class Normal, bool Periodic, bool Fixed>
-double pair_chunk(const ForceLoopInput& in, ContactList& pc, BlockLoads& out, long first, long last, int block_end) {
+double pair_chunk(const ForceLoopInput& in, ContactList& pc, BlockLoads& out, long first, long last, int reach_end) {
   // The arrays' addresses and the box in locals: the loop stores bytes (active, bonded), and a byte
   // store may change any memory for the compiler, the vectors' own fields included; reading through
   // the vectors it reloaded every array's address after each such store.
@@ -112,7 +113,7 @@ double pair_chunk(const ForceLoopInput& in, ContactList& pc, BlockLoads& out, lo
     const Vec3 moment = c.n.cross(f.tangential);
     normal[k] = c.n;
     sum[k] = {f.on_i, moment};
-    if (std::max(i, j) < block_end) {  // both in this block (the smaller slot always is)
+    if (std::max(i, j) < reach_end) {  // the smaller slot is always in this block
       force[i] += f.on_i;              // eq. 2.31-2.32
       force[j] -= f.on_i;
       torque[i] += radius[i] * moment;  // eq. 2.33-2.34: a n x f_t for i and j alike
@@ -127,31 +128,43 @@ template <class Normal, bool Periodic, bool Fixed>
 double pair_forces(const ForceLoopInput& in, ContactList& pc, BlockLoads& out) {
   const long blocks = static_cast<long>(out.first.size()) - 1;
   const long slots = static_cast<long>(in.particles.size());
+  auto candidates = [&](long b) { return out.first[b + 1] - out.first[b]; };
   double worst = 0;
 #pragma omp parallel reduction(max : worst)
   {
-    // Each thread takes a contiguous run of blocks holding about its share of the candidates (the
-    // work: contacts crowd where a sample has settled, particle counts would balance badly).
-    // Which thread sums a block changes no bit.
     const long threads = omp_get_num_threads(), t = omp_get_thread_num();
-    const long total = out.first[blocks];
-    auto run_start = [&](long u) {
-      return u == threads ? blocks : std::lower_bound(out.first.begin(), out.first.end() - 1, total * u / threads) - out.first.begin();
-    };
-    for (long b = run_start(t); b < run_start(t + 1); ++b) {
-      const int block_end = static_cast<int>(std::min(slots, (b + 1) * out.block));
-      for (int s = static_cast<int>(b * out.block); s < block_end; ++s) out.force[s] = out.torque[s] = Vec3::Zero();
-      for (long first = out.first[b]; first < out.first[b + 1]; first += kChunk) {
-        const long last = std::min(out.first[b + 1], first + kChunk);
-        worst = std::max(worst, pair_chunk<Normal, Periodic, Fixed>(in, pc, out, first, last, block_end));
+    // Two phases, the even blocks and then the odd ones. A block's contacts are added to both
+    // particles when the other lies in the same block or the next: within a phase no two blocks
+    // write the same block. The phases, not the threads, set the order of the sums: the same bits
+    // for any thread count.
+    for (long phase = 0; phase < 2; ++phase) {
+      // Each thread takes a contiguous run of the phase's blocks holding about its share of the
+      // candidates (the work: contacts crowd where a sample has settled, particle counts would
+      // balance badly).
+      long total = 0;
+      for (long b = phase; b < blocks; b += 2) total += candidates(b);
+      auto run_start = [&](long u) {
+        long b = phase;
+        for (long before = 0; b < blocks && (u == threads || before < total * u / threads); b += 2) before += candidates(b);
+        return b;
+      };
+      const long end = run_start(t + 1);
+      for (long b = run_start(t); b < end; b += 2) {
+        // Both blocks this one writes are zeroed first: the next one is summed in the next phase.
+        if (phase == 0)
+          for (long s = b * out.block; s < std::min(slots, (b + 2) * out.block); ++s) out.force[s] = out.torque[s] = Vec3::Zero();
+        const int reach_end = static_cast<int>(std::min(slots, (b + 2) * out.block));
+        for (long first = out.first[b]; first < out.first[b + 1]; first += kChunk) {
+          const long last = std::min(out.first[b + 1], first + kChunk);
+          worst = std::max(worst, pair_chunk<Normal, Periodic, Fixed>(in, pc, out, first, last, reach_end));
+        }
       }
+#pragma omp barrier
     }
   }
   return worst;
 }
 
-// After the pair loop: each particle's wall contacts are added to its loads (one run per particle,
-// so one thread per particle), in the run's order.
 template <class Normal>
 double wall_forces(const ForceLoopInput& in, ContactList& wc, BlockLoads& out) {
   const Particles& p = in.particles;

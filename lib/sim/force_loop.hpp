@@ -26,17 +26,18 @@ struct ForceLoopInput {
   double dt;
 };
 
-// The loads of the pair contacts whose two particles lie in the same block of storage slots
-// [b block, (b + 1) block): the force loop adds them to both particles as it goes (no per-contact
-// result to read back), one block per thread at a time, each block's contacts in their stored
-// order; then each particle's wall contacts. Pair contacts across blocks are summed afterwards per
-// particle (Simulation::integrate). The blocks depend on the storage only, never on the thread
-// count: the same bits for any count.
+// Per storage slot, the loads the force loop adds as it goes (no per-contact result to read back):
+// the pair contacts of a block of storage slots [b block, (b + 1) block) whose other particle lies
+// in the same block or the next, added to both particles, the even blocks first and then the odd
+// ones (so that no two blocks summed at once write the same block), each block's contacts in their
+// stored order; then each particle's wall contacts. Pair contacts between blocks farther apart
+// are summed afterwards per particle (Simulation::integrate). Blocks and phases depend on the
+// storage only, never on the thread count: the same bits for any count.
 struct BlockLoads {
   long block;                     // storage slots per block
   const std::vector<long>& first; // where each block's candidates start (+ the end): those whose
                                   // smaller slot lies in the block (stored so, place_by_storage)
-  std::vector<Vec3>& force;       // per slot: sum of the block's and the walls' contact forces [N]
+  std::vector<Vec3>& force;       // per slot: sum of those contact forces [N]
   std::vector<Vec3>& torque;      // per slot: sum of a n x f_t, eq. 2.33-2.34 [N m]
 };
 
@@ -102,8 +103,9 @@ void counted_wall_touches(const Particles& p, const std::vector<WallGeometry>& g
 
 // For every candidate of `pairs` and `walls`: decides whether it is a contact (`active`: touching,
 // or holding by a bond), and if so fills .normal and .sum and updates its history; a candidate
-// that is no contact gets a zero .sum and loses its spring. Pair contacts within a block and wall
-// contacts are also summed into `loads`. Returns the largest overlap relative to the smaller radius of its contact.
+// that is no contact gets a zero .sum and loses its spring. Pair contacts within a block or between
+// neighbouring blocks, and wall contacts, are also summed into `loads`. Returns the largest overlap
+// relative to the smaller radius of its contact.
 double compute_contact_forces(const ForceLoopInput& in, ForceVariant variant, ContactList& pairs, ContactList& walls,
                               BlockLoads& loads);
 

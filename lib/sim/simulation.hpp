@@ -34,9 +34,10 @@ struct SimParams {
   long sort_every = 1000;
   long sort_min_particles = 10000;
   // Storage slots per block of the force sums (sim/force_loop.hpp BlockLoads): contacts within a
-  // block are added to both particles by the force loop, those across blocks afterwards. Speed
-  // only, within the last bits. Blocks are the unit of work of a thread: 1,024 balanced two
-  // threads on a 10,000-sphere settle (17-18 s; 4,096: 21 s) and costs the chute little.
+  // block or between neighbouring blocks are added to both particles by the force loop, the
+  // others afterwards. Speed only, within the last bits. Blocks are the unit of work of a thread:
+  // 1,024 balanced two threads on a 10,000-sphere settle (17-18 s; 4,096: 21 s) and costs the
+  // chute little.
   long load_block = 1024;
 };
 
@@ -132,12 +133,12 @@ class Simulation {
   mutable bool pair_view_current_ = false, wall_view_current_ = false;
   void contacts_modified();  // the views must be compacted again
   std::vector<WallGeometry> wall_geometry_;
-  // Per-particle lists of the pair candidates across blocks that integrate() sums, in a fixed
-  // order, rebuilt with the neighbour list.
+  // Per-particle lists of the pair candidates between blocks farther apart than neighbours, which
+  // integrate() sums, in a fixed order; rebuilt with the neighbour list.
   std::vector<int> csr_start_, csr_entry_, csr_fill_;
   std::vector<long> block_first_;  // first pair candidate of each load block, then the end
   long indexed_block_ = 0;         // the load_block of block_first_ and the per-particle lists
-  std::vector<Vec3> block_force_, block_torque_;  // per slot, the sums of its block's contacts and its walls
+  std::vector<Vec3> block_force_, block_torque_;  // per slot, the sums of the force loop (BlockLoads)
   std::vector<int> wall_runs_;  // first wall candidate of each particle, then the end
 };
 
