@@ -43,7 +43,7 @@ def main(path):
     print("benchmark (32,000 spheres, gran/hooke/history kn = 2e5, gamma_n = 50, friction 0.5, periodic in x")
     print("and y, gravity tilted 26 degrees, a frozen rough base; LJ units, dt = 1e-4, skin 0.1) from a")
     print("regenerated initial state (a touching lattice with random velocities that collapses and flows;")
-    print("25,508 contacts among the 32,000 spheres after 2,000 steps, against 4,153 among 100,000 in settle).")
+    print("25,511 contacts among the 32,000 spheres after 2,000 steps, against 4,153 among 100,000 in settle).")
     print("PSPS = particles x steps / loop time (median of the runs; loop time excludes setup, as LAMMPS's")
     print("`Loop time`). Peak RSS: largest process.\n")
     print("| scene | measured | steps | procs | code | runs | loop s (median) | PSPS | ours / this code | peak RSS MB |")
