@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -218,8 +219,9 @@ void Simulation::index_contacts_per_particle() {
   const long block = params.load_block;
   const long blocks = (static_cast<long>(n) + block - 1) / block;
   auto lower_slot = [&](long k) { return std::min(pairs_.slot_i[k], pairs_.slot_j[k]); };
-  // The force loop adds the contacts within a block or between neighbouring blocks.
-  auto across_blocks = [&](long k) { return std::abs(pairs_.slot_i[k] / block - pairs_.slot_j[k] / block) >= 2; };
+  // The force loop adds the contacts within a block or between neighbouring blocks; the rest
+  // (blocks farther apart) are summed in integrate().
+  auto blocks_apart = [&](long k) { return std::abs(pairs_.slot_i[k] / block - pairs_.slot_j[k] / block) >= 2; };
   block_first_.resize(blocks + 1);
   for (long b = 0, k = 0; b <= blocks; ++b) {
     for (; k < npc && lower_slot(k) < b * block; ++k)
@@ -227,19 +229,19 @@ void Simulation::index_contacts_per_particle() {
     block_first_[b] = k;
   }
   indexed_block_ = block;
-  // Per-particle lists of the pair candidates farther apart, by key, so that their sums in
+  // Per-particle lists of those pair candidates (blocks apart), by key, so that their sums in
   // integrate() give the same bits for any thread count (the force loop adds the rest). Entry
   // codes: 2k = pair k seen from i, 2k+1 = seen from j.
   csr_start_.assign(n + 1, 0);
   for (long k = 0; k < npc; ++k)
-    if (across_blocks(k)) ++csr_start_[pairs_.slot_i[k] + 1], ++csr_start_[pairs_.slot_j[k] + 1];
+    if (blocks_apart(k)) ++csr_start_[pairs_.slot_i[k] + 1], ++csr_start_[pairs_.slot_j[k] + 1];
   for (std::size_t k = 0; k < n; ++k) csr_start_[k + 1] += csr_start_[k];
   if (static_cast<std::size_t>(csr_start_[n]) > csr_entry_.capacity()) csr_entry_.reserve(csr_start_[n]);  // no doubling
   csr_entry_.resize(csr_start_[n]);
   csr_fill_.assign(csr_start_.begin(), csr_start_.end() - 1);
   for (long r = 0; r < npc; ++r) {
     const int k = key_rank_to_position(pair_by_key_, r);
-    if (!across_blocks(k)) continue;
+    if (!blocks_apart(k)) continue;
     csr_entry_[csr_fill_[pairs_.slot_i[k]]++] = static_cast<int>(2 * k);
     csr_entry_[csr_fill_[pairs_.slot_j[k]]++] = static_cast<int>(2 * k + 1);
   }
