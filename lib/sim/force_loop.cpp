@@ -66,13 +66,13 @@ double pair_chunk(const ForceLoopInput& in, ContactList& pc, BlockLoads& out, lo
   for (long k = first; k < last; ++k) {
     const int i = slot_i[k], j = slot_j[k];
     const std::uint8_t was = active[k];
-    const Vec3 d = Periodic ? box.nearest(x[j] - x[i]) : Vec3(x[j] - x[i]);
+    const Vec3 d = separation<Periodic>(box, x[i], x[j]);
     // Bitwise, not ||: whether a candidate touches is a coin toss to the branch predictor.
     std::uint8_t now = static_cast<std::uint8_t>(spheres_touch(d, radius[i], radius[j])) | bonded[k];
     if constexpr (Fixed) {
       // A bond between two held particles is dropped too, so that nothing depends on when the
       // list was last rebuilt.
-      const std::uint8_t free = !(fixed[i] & fixed[j]);
+      const std::uint8_t free = !both_held(fixed[i], fixed[j]);
       now &= free;
       bonded[k] &= free;
     }
@@ -150,16 +150,18 @@ double pair_forces(const ForceLoopInput& in, ContactList& pc, BlockLoads& out) {
       };
       const long end = run_start(t + 1);
       for (long b = run_start(t); b < end; b += 2) {
+        const int reach_end = static_cast<int>(std::min(slots, (b + 2) * out.block));
         // Both blocks this one writes are zeroed first: the next one is summed in the next phase.
         if (phase == 0)
-          for (long s = b * out.block; s < std::min(slots, (b + 2) * out.block); ++s) out.force[s] = out.torque[s] = Vec3::Zero();
-        const int reach_end = static_cast<int>(std::min(slots, (b + 2) * out.block));
+          for (long s = b * out.block; s < reach_end; ++s) out.force[s] = out.torque[s] = Vec3::Zero();
         for (long first = out.first[b]; first < out.first[b + 1]; first += kChunk) {
           const long last = std::min(out.first[b + 1], first + kChunk);
           worst = std::max(worst, pair_chunk<Normal, Periodic, Fixed>(in, pc, out, first, last, reach_end));
         }
       }
+      if (phase == 0) {
 #pragma omp barrier
+      }
     }
   }
   return worst;

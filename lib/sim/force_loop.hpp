@@ -50,9 +50,13 @@ const char* variant_name(ForceVariant v);
 // x_j - x_i, through the nearest image where boundaries are periodic. The force loop is compiled
 // for both cases, so that a scene without periodic boundaries pays nothing for them.
 template <bool Periodic>
+inline Vec3 separation(const PeriodicBox& box, const Vec3& x_i, const Vec3& x_j) {
+  if constexpr (Periodic) return box.nearest(x_j - x_i);
+  else return x_j - x_i;
+}
+template <bool Periodic>
 inline Vec3 separation(const Particles& p, const PeriodicBox& box, int i, int j) {
-  if constexpr (Periodic) return box.nearest(p.x[j] - p.x[i]);
-  else return p.x[j] - p.x[i];
+  return separation<Periodic>(box, p.x[i], p.x[j]);
 }
 inline Vec3 separation(const Particles& p, const PeriodicBox& box, int i, int j) {
   return box.any() ? separation<true>(p, box, i, j) : separation<false>(p, box, i, j);

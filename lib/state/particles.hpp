@@ -13,6 +13,8 @@ namespace dem {
 inline double sphere_volume(double a) { return 4.0 / 3.0 * std::numbers::pi * a * a * a; }
 inline double sphere_mass(double density, double a) { return density * sphere_volume(a); }  // m = rho 4/3 pi a^3
 inline double sphere_inertia(double m, double a) { return 0.4 * m * a * a; }  // I = 2/5 m a^2
+// Two held particles never interact (the search skips such pairs, the force loop drops them).
+inline bool both_held(std::uint8_t fixed_i, std::uint8_t fixed_j) { return fixed_i && fixed_j; }
 
 struct Particles {
   std::vector<Index> id;
@@ -43,8 +45,7 @@ struct Particles {
     fixed.push_back(0);
   }
 
-  // Two held particles never interact (the search skips such pairs, the force loop drops them).
-  bool both_fixed(std::size_t i, std::size_t j) const { return fixed[i] && fixed[j]; }
+  bool both_fixed(std::size_t i, std::size_t j) const { return both_held(fixed[i], fixed[j]); }
 
   double inertia(std::size_t k) const { return sphere_inertia(mass[k], radius[k]); }
 
