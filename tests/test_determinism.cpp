@@ -8,6 +8,7 @@
 #include <cstring>
 #include <numeric>
 #include <random>
+#include <string>
 
 #include "generation/fill.hpp"
 #include "sim/simulation.hpp"
@@ -50,27 +51,43 @@ bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
   return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
 }
 
-// Also with small load blocks (SimParams::load_block), so that many contacts lie across blocks
-// (neighbouring and farther) and the threads share out many blocks in each phase, and with the
-// storage re-sorted every 7 steps; three threads too (an odd count splits the phases unevenly).
+// Also with small load blocks (SimParams::load_block, load_reach), so that many contacts lie
+// across blocks (within reach and farther) and the threads share out many blocks, and with the
+// storage re-sorted every 7 steps; three threads too (an odd count, more threads than this
+// machine's cores: threads wait for each other's blocks), and a run whose thread count changes
+// from step to step (the shares of the last step no longer fit).
 TEST(Determinism, OneTwoAndThreeThreadsGiveTheSameBits) {
-  for (long block : {4096L, 16L}) {
-    Simulation a = make_cloud();
-    a.params.load_block = block, a.params.sort_every = 7, a.params.sort_min_particles = 0;
+  const int threads_before = omp_get_max_threads();
+  struct Blocks {
+    long block, reach;
+  };
+  for (const Blocks blocks : {Blocks{4096, 1}, Blocks{16, 4}, Blocks{16, 0}}) {
+    auto make = [&] {
+      Simulation s = make_cloud();
+      s.params.load_block = blocks.block, s.params.load_reach = blocks.reach;
+      s.params.sort_every = 7, s.params.sort_min_particles = 0;
+      return s;
+    };
+    Simulation a = make();
     omp_set_num_threads(1);
     for (int s = 0; s < 1500; ++s) a.advance();
     ASSERT_GT(a.pair_contacts().size(), 0u) << "the test must exercise contacts";
-    for (int threads : {2, 3}) {
-      Simulation b = make_cloud();
-      b.params.load_block = block, b.params.sort_every = 7, b.params.sort_min_particles = 0;
-      omp_set_num_threads(threads);
-      for (int s = 0; s < 1500; ++s) b.advance();
-      EXPECT_TRUE(same_bits(a.particles.x, b.particles.x)) << "load_block " << block << ", " << threads << " threads";
-      EXPECT_TRUE(same_bits(a.particles.v, b.particles.v)) << "load_block " << block << ", " << threads << " threads";
-      EXPECT_TRUE(same_bits(a.particles.w, b.particles.w)) << "load_block " << block << ", " << threads << " threads";
-      EXPECT_TRUE(same_bits(a.pair_contacts().spring, b.pair_contacts().spring)) << "load_block " << block << ", " << threads << " threads";
+    for (int threads : {2, 3, 0}) {  // 0: 1, 2 and 3 threads in turn
+      Simulation b = make();
+      omp_set_num_threads(threads ? threads : 1);
+      for (int s = 0; s < 1500; ++s) {
+        if (threads == 0) omp_set_num_threads(1 + s % 3);
+        b.advance();
+      }
+      const std::string what = "load_block " + std::to_string(blocks.block) + " reach " + std::to_string(blocks.reach) + ", " +
+                               (threads ? std::to_string(threads) : std::string("1-2-3")) + " threads";
+      EXPECT_TRUE(same_bits(a.particles.x, b.particles.x)) << what;
+      EXPECT_TRUE(same_bits(a.particles.v, b.particles.v)) << what;
+      EXPECT_TRUE(same_bits(a.particles.w, b.particles.w)) << what;
+      EXPECT_TRUE(same_bits(a.pair_contacts().spring, b.pair_contacts().spring)) << what;
     }
   }
+  omp_set_num_threads(threads_before);
 }
 
 // Storage order is speed only (SimParams::sort_every), up to the last bits: it sets the order in

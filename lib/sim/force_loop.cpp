@@ -3,6 +3,8 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <atomic>
+#include <thread>
 #include <cmath>
 
 #include "contact/contact_law.hpp"
@@ -12,11 +14,11 @@ namespace dem {
 
 namespace {
 
-// Each contact and each block of particles is written by one thread only; no atomics (DESIGN.md).
-// Each thread takes a contiguous run of blocks, as it takes a contiguous run of particles in the
-// integration: candidates stored along the particles' order, so a thread mostly reads particles
-// that stay in its own core's cache. (Chunks dealt in turn balanced the threads better but made
-// the cores trade cache lines every step: 40 % slower on 2 cores.)
+// Each contact and each block of particles is written by one thread only; no force is added
+// atomically (DESIGN.md). Each thread takes a contiguous run of blocks, and the integration gives
+// it the same particles: candidates are stored along the particles' order, so a thread mostly
+// reads particles that stay in its own core's cache. (Chunks dealt in turn balanced the threads
+// better but made the cores trade cache lines every step: 40 % slower on 2 cores.)
 // Each loop also returns the largest overlap relative to the smaller radius (a stability check).
 constexpr long kChunk = 256;  // candidates per pass-1/pass-2 chunk
 
@@ -28,7 +30,7 @@ inline double relative_overlap_if_larger(double overlap, double radius, double w
 }
 
 // The candidates [first, last) of one block; contacts whose two slots lie before `reach_end` (in
-// this block or the next) are added to both particles' loads. Periodic: distances to the nearest
+// this block or the `reach` after it) are added to both particles' loads. Periodic: distances to the nearest
 // image; Fixed: some particles are held in place. Both are template parameters so that a scene
 // without them pays nothing.
 template <class Normal, bool Periodic, bool Fixed>
@@ -124,43 +126,81 @@ double pair_chunk(const ForceLoopInput& in, ContactList& pc, BlockLoads& out, lo
   return worst;
 }
 
+// Waits until block b of this force loop (`epoch`) is done: spins, as a barrier does.
+inline void wait_until_done(std::vector<long>& done, long b, long epoch) {
+  std::atomic_ref<long> flag(done[b]);
+  for (long spins = 0; flag.load(std::memory_order_acquire) != epoch; ++spins) {
+    // More threads than cores: the thread waited for may need this core.
+    if (spins >= 4096) std::this_thread::yield();
+#if defined(__x86_64__) || defined(__i386__)
+    __builtin_ia32_pause();
+#endif
+  }
+}
+
 template <class Normal, bool Periodic, bool Fixed>
 double pair_forces(const ForceLoopInput& in, ContactList& pc, BlockLoads& out) {
   const long blocks = static_cast<long>(out.first.size()) - 1;
   const long slots = static_cast<long>(in.particles.size());
-  auto candidates = [&](long b) { return out.first[b + 1] - out.first[b]; };
+  const long phases = out.reach + 1;
+  // A block's work: the time it took at the last step (what it costs depends on how many of its
+  // candidates touch, on held particles, on the caches: a count balanced two threads within 30 %
+  // at best); before any is timed, its candidates.
+  if (static_cast<long>(out.cost.size()) != blocks) {
+    out.cost.resize(blocks);
+    for (long b = 0; b < blocks; ++b) out.cost[b] = out.first[b + 1] - out.first[b] + 1;
+  }
+  out.done.resize(blocks);
+  long total = 0;
+  for (long b = 0; b < blocks; ++b) total += out.cost[b];
   double worst = 0;
 #pragma omp parallel reduction(max : worst)
   {
     const long threads = omp_get_num_threads(), t = omp_get_thread_num();
-    // Two phases, the even blocks and then the odd ones. A block's contacts are added to both
-    // particles when the other lies in the same block or the next: within a phase no two blocks
-    // write the same block. The phases, not the threads, set the order of the sums: the same bits
-    // for any thread count.
-    for (long phase = 0; phase < 2; ++phase) {
-      // Each thread takes a contiguous run of the phase's blocks holding about its share of the
-      // candidates (the work: contacts crowd where a sample has settled, particle counts would
-      // balance badly).
-      long total = 0;
-      for (long b = phase; b < blocks; b += 2) total += candidates(b);
-      auto run_start = [&](long u) {
-        long b = phase;
-        for (long before = 0; b < blocks && (u == threads || before < total * u / threads); b += 2) before += candidates(b);
-        return b;
-      };
-      const long end = run_start(t + 1);
-      for (long b = run_start(t); b < end; b += 2) {
-        const int reach_end = static_cast<int>(std::min(slots, (b + 2) * out.block));
-        // Both blocks this one writes are zeroed first: the next one is summed in the next phase.
+    // Each thread takes a contiguous run of blocks holding about its share of the work
+    // (candidates are stored along the particles' order: a thread mostly reads particles that
+    // stay in its core's cache), the same run in every phase.
+    auto run_start = [&](long u) {
+      long b = 0;
+      // The run ends at the block boundary nearest its share.
+      for (long before = 0; b < blocks && (u == threads || before + out.cost[b] / 2 < total * u / threads); ++b)
+        before += out.cost[b];
+      return b;
+    };
+    const long start = run_start(t), end = run_start(t + 1);
+#pragma omp single
+    out.runs.assign(threads + 1, blocks);  // (its implied barrier: every run is set before a cost changes)
+    out.runs[t] = start;
+    // reach + 1 phases: phase p takes the blocks b = p, p + reach + 1, ... A block's contacts are
+    // added to both particles when the other lies in the same block or the `reach` after it, so
+    // two blocks closer than reach + 1 write common blocks: the one of the earlier phase goes
+    // first. A thread runs its own blocks phase by phase; a block next to another thread's run
+    // waits for that thread's blocks of earlier phases within reach (`done`: flags that order
+    // whole blocks, as a barrier would; no force is ever added atomically). So the phases, not
+    // the threads, set the order of the sums: the same bits for any thread count. Within a phase,
+    // even threads go down and odd ones up, so that two threads reach the blocks they share first.
+    const bool down = t % 2 == 0;
+    const long tick = out.epoch;
+    for (long phase = 0; phase < phases; ++phase) {
+      long first_b = start + ((phase - start) % phases + phases) % phases;  // the run's first block of this phase
+      if (first_b >= end) continue;
+      const long last_b = first_b + (end - 1 - first_b) / phases * phases;
+      for (long b = down ? last_b : first_b; b >= first_b && b <= last_b; b += down ? -phases : phases) {
+        // Other threads' blocks within reach whose phase comes earlier.
+        for (long o = std::max(0L, b - out.reach); o <= std::min(blocks - 1, b + out.reach); ++o)
+          if ((o < start || o >= end) && o % phases < phase) wait_until_done(out.done, o, tick);
+        const double tb = omp_get_wtime();
+        const int reach_end = static_cast<int>(std::min(slots, (b + phases) * out.block));
+        // Phase 0 zeroes every block it writes: the phases after it write no other.
         if (phase == 0)
           for (long s = b * out.block; s < reach_end; ++s) out.force[s] = out.torque[s] = Vec3::Zero();
         for (long first = out.first[b]; first < out.first[b + 1]; first += kChunk) {
           const long last = std::min(out.first[b + 1], first + kChunk);
           worst = std::max(worst, pair_chunk<Normal, Periodic, Fixed>(in, pc, out, first, last, reach_end));
         }
-      }
-      if (phase == 0) {
-#pragma omp barrier
+        std::atomic_ref<long>(out.done[b]).store(tick, std::memory_order_release);
+        const double took = omp_get_wtime() - tb;
+        out.cost[b] = 1 + static_cast<long>(1e9 * took);  // [ns]
       }
     }
   }

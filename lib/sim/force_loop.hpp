@@ -28,15 +28,24 @@ struct ForceLoopInput {
 
 // Per storage slot, the loads the force loop adds as it goes (no per-contact result to read back):
 // the pair contacts of a block of storage slots [b block, (b + 1) block) whose other particle lies
-// in the same block or the next, added to both particles, the even blocks first and then the odd
-// ones (so that no two blocks summed at once write the same block), each block's contacts in their
-// stored order; then each particle's wall contacts. Pair contacts between blocks farther apart
-// are summed afterwards per particle (Simulation::integrate). Blocks and phases depend on the
-// storage only, never on the thread count: the same bits for any count.
+// in the same block or one of the `reach` blocks after it, added to both particles, in reach + 1
+// phases (phase p holds the blocks b with b mod (reach + 1) = p; a block writes itself and the
+// `reach` blocks after it, so no two blocks of a phase write the same block, and of two blocks
+// that do, the one of the earlier phase adds first), each block's contacts in their stored order;
+// then each particle's wall contacts. Pair contacts between blocks farther apart are summed
+// afterwards per particle (Simulation::integrate). Blocks and phases depend on the storage only,
+// never on the thread count: the same bits for any count.
 struct BlockLoads {
   long block;                     // storage slots per block
+  long reach;                     // blocks after a block whose contacts with it are summed here
   const std::vector<long>& first; // where each block's candidates start (+ the end): those whose
                                   // smaller slot lies in the block (stored so, place_by_storage)
+  std::vector<long>& cost;        // per block: its time at the last step [ns], by which the
+                                  // next step shares the blocks out among the threads
+  std::vector<long>& done;        // per block: the epoch of the force loop that last summed it
+  std::vector<long>& runs;        // per thread: the first block it summed, then the end (the
+                                  // integration gives each thread the same particles)
+  long epoch;                     // this force loop's: unlike any before it
   std::vector<Vec3>& force;       // per slot: sum of those contact forces [N]
   std::vector<Vec3>& torque;      // per slot: sum of a n x f_t, eq. 2.33-2.34 [N m]
 };
@@ -108,7 +117,7 @@ void counted_wall_touches(const Particles& p, const std::vector<WallGeometry>& g
 // For every candidate of `pairs` and `walls`: decides whether it is a contact (`active`: touching,
 // or holding by a bond), and if so fills .normal and .sum and updates its history; a candidate
 // that is no contact gets a zero .sum and loses its spring. Pair contacts within a block or between
-// neighbouring blocks, and wall contacts, are also summed into `loads`. Returns the largest overlap
+// blocks at most loads.reach apart, and wall contacts, are also summed into `loads`. Returns the largest overlap
 // relative to the smaller radius of its contact.
 double compute_contact_forces(const ForceLoopInput& in, ForceVariant variant, ContactList& pairs, ContactList& walls,
                               BlockLoads& loads);

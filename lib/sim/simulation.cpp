@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include <omp.h>
+
 #include "sim/force_loop.hpp"
 #include "core/error.hpp"
 
@@ -20,10 +22,11 @@ void Simulation::advance() {
   find_contacts();
   const bool any_fixed = std::find(particles.fixed.begin(), particles.fixed.end(), 1) != particles.fixed.end();
   const ForceLoopInput in{particles, materials, walls, wall_geometry_, wall_runs_, periodic, any_fixed, dt};
-  if (indexed_block_ != params.load_block) index_contacts_per_particle();  // load_block changed
+  if (indexed_block_ != params.load_block || indexed_reach_ != params.load_reach) index_contacts_per_particle();
   block_force_.resize(particles.size());
   block_torque_.resize(particles.size());
-  BlockLoads loads{params.load_block, block_first_, block_force_, block_torque_};
+  BlockLoads loads{params.load_block, params.load_reach, block_first_, block_cost_, block_done_, thread_runs_, ++force_epoch_,
+                   block_force_, block_torque_};
   const double worst_overlap = compute_contact_forces(in, choose_force_variant(*this), pairs_, walls_, loads);
   contacts_modified();
   if (worst_overlap > params.max_overlap) report_overlap(worst_overlap);
@@ -216,19 +219,20 @@ void Simulation::index_contacts_per_particle() {
   // Load blocks: candidates are stored grouped by their smaller slot, in slot order
   // (place_by_storage), so each block's candidates form one run.
   if (params.load_block < 1) throw std::invalid_argument("SimParams::load_block must be at least 1");
-  const long block = params.load_block;
+  if (params.load_reach < 0) throw std::invalid_argument("SimParams::load_reach must be at least 0");
+  const long block = params.load_block, reach = params.load_reach;
   const long blocks = (static_cast<long>(n) + block - 1) / block;
   auto lower_slot = [&](long k) { return std::min(pairs_.slot_i[k], pairs_.slot_j[k]); };
-  // The force loop adds the contacts within a block or between neighbouring blocks; the rest
-  // (blocks farther apart) are summed in integrate().
-  auto blocks_apart = [&](long k) { return std::abs(pairs_.slot_i[k] / block - pairs_.slot_j[k] / block) >= 2; };
+  // The force loop adds the contacts within a block or between blocks at most `reach` apart; the
+  // rest (blocks farther apart) are summed in integrate().
+  auto blocks_apart = [&](long k) { return std::abs(pairs_.slot_i[k] / block - pairs_.slot_j[k] / block) > reach; };
   block_first_.resize(blocks + 1);
   for (long b = 0, k = 0; b <= blocks; ++b) {
     for (; k < npc && lower_slot(k) < b * block; ++k)
       if (lower_slot(k) < (b - 1) * block) throw std::logic_error("pair candidates not stored along the slots");
     block_first_[b] = k;
   }
-  indexed_block_ = block;
+  indexed_block_ = block, indexed_reach_ = reach;
   // Per-particle lists of those pair candidates (blocks apart), by key, so that their sums in
   // integrate() give the same bits for any thread count (the force loop adds the rest). Entry
   // codes: 2k = pair k seen from i, 2k+1 = seen from j.
@@ -280,35 +284,46 @@ void Simulation::integrate(bool any_fixed) {
   long bad = -1;
   // One pass: each particle's loads are summed and used at once (no per-particle force arrays to
   // write and read back: this loop is bound by memory traffic at 1e5 particles and more).
-#pragma omp parallel for schedule(static) reduction(max : bad)
-  for (long i = 0; i < n; ++i) {
-    if (any_fixed && fixed[i]) {  // held in place
-      v[i] = w[i] = Vec3::Zero();
-      continue;
+  // Each thread takes the particles of the blocks it summed in the force loop (thread_runs_):
+  // they are in its core's cache. (Split evenly instead, a thread read half its particles' loads
+  // and positions from the other core's cache.)
+  const long block = params.load_block;
+  const bool same_runs = static_cast<int>(thread_runs_.size()) == omp_get_max_threads() + 1;
+#pragma omp parallel reduction(max : bad)
+  {
+    const long threads = omp_get_num_threads(), t = omp_get_thread_num();
+    const bool runs = same_runs && threads + 1 == static_cast<long>(thread_runs_.size());
+    const long lo = runs ? std::min(n, thread_runs_[t] * block) : n * t / threads;
+    const long hi = runs ? std::min(n, thread_runs_[t + 1] * block) : n * (t + 1) / threads;
+    for (long i = lo; i < hi; ++i) {
+      if (any_fixed && fixed[i]) {  // held in place
+        v[i] = w[i] = Vec3::Zero();
+        continue;
+      }
+      // The net load (eq. 2.31-2.34): gravity, the sums of the force loop (BlockLoads), then its
+      // contacts with particles in blocks farther apart, in the fixed order of
+      // index_contacts_per_particle: the same bits for any thread count. Mere candidates are skipped
+      // (they hold exact zeros, ContactList), here and in the block sums, so the candidate set,
+      // which depends on when the list was rebuilt, never changes a bit of the result; skipping
+      // reads a byte per candidate instead of 48.
+      Vec3 force = mass[i] * gravity + block_force[i];
+      Vec3 torque = block_torque[i];
+      for (int e = csr_start[i]; e < csr_start[i + 1]; ++e) {
+        const unsigned code = static_cast<unsigned>(csr_entry[e]);
+        const long k = code >> 1;
+        if (!active[k]) continue;
+        // Torques, eq. 2.33-2.34: M = a n x f_t for i and j alike (M_j = (a_j / a_i) M_i).
+        force += (code & 1) ? Vec3(-sum[k].force) : sum[k].force;  // eq. 2.31-2.32
+        torque += radius[i] * sum[k].moment;
+      }
+      v[i] = (ar * v[i] + force * (step_dt / mass[i])) * br;
+      w[i] = (at * w[i] + torque * (step_dt / sphere_inertia(mass[i], radius[i]))) * bt;
+      x[i] += v[i] * step_dt;
+      if (wrap) box.wrap(x[i], image[i]);
+      // NaN or Inf in any component makes the sum NaN or Inf (so does a sum beyond 1e308: a state as
+      // broken). Eigen's allFinite on each vector cost 7 % of a settle's time.
+      if (!std::isfinite(x[i].sum() + v[i].sum() + w[i].sum())) bad = std::max(bad, i);
     }
-    // The net load (eq. 2.31-2.34): gravity, the sums of the force loop (BlockLoads), then its
-    // contacts with particles in blocks farther apart, in the fixed order of
-    // index_contacts_per_particle: the same bits for any thread count. Mere candidates are skipped
-    // (they hold exact zeros, ContactList), here and in the block sums, so the candidate set,
-    // which depends on when the list was rebuilt, never changes a bit of the result; skipping
-    // reads a byte per candidate instead of 48.
-    Vec3 force = mass[i] * gravity + block_force[i];
-    Vec3 torque = block_torque[i];
-    for (int e = csr_start[i]; e < csr_start[i + 1]; ++e) {
-      const unsigned code = static_cast<unsigned>(csr_entry[e]);
-      const long k = code >> 1;
-      if (!active[k]) continue;
-      // Torques, eq. 2.33-2.34: M = a n x f_t for i and j alike (M_j = (a_j / a_i) M_i).
-      force += (code & 1) ? Vec3(-sum[k].force) : sum[k].force;  // eq. 2.31-2.32
-      torque += radius[i] * sum[k].moment;
-    }
-    v[i] = (ar * v[i] + force * (step_dt / mass[i])) * br;
-    w[i] = (at * w[i] + torque * (step_dt / sphere_inertia(mass[i], radius[i]))) * bt;
-    x[i] += v[i] * step_dt;
-    if (wrap) box.wrap(x[i], image[i]);
-    // NaN or Inf in any component makes the sum NaN or Inf (so does a sum beyond 1e308: a state as
-    // broken). Eigen's allFinite on each vector cost 7 % of a settle's time.
-    if (!std::isfinite(x[i].sum() + v[i].sum() + w[i].sum())) bad = std::max(bad, i);
   }
   if (bad >= 0) {
     const Particles& p = particles;

@@ -33,12 +33,13 @@ struct SimParams {
   // (never the thread count, nor a restart: checkpoints keep the storage order).
   long sort_every = 1000;
   long sort_min_particles = 10000;
-  // Storage slots per block of the force sums (sim/force_loop.hpp BlockLoads): contacts within a
-  // block or between neighbouring blocks are added to both particles by the force loop, the
-  // others afterwards. Speed only, within the last bits. Blocks are the unit of work of a thread:
-  // 1,024 balanced two threads on a 10,000-sphere settle (17-18 s; 4,096: 21 s) and costs the
-  // chute little.
-  long load_block = 1024;
+  // Blocks of the force sums (sim/force_loop.hpp BlockLoads): contacts between two particles whose
+  // storage slots lie in one block of load_block slots or in blocks at most load_reach apart are
+  // added to both particles by the force loop, the others afterwards. Speed only, within the last
+  // bits. Blocks are the unit of work of a thread, so they are small (fine shares); the reach
+  // spans about one layer of a settled bed (the vertical contacts).
+  long load_block = 256;
+  long load_reach = 4;
 };
 
 // What the particles exert on one wall element this step.
@@ -133,11 +134,16 @@ class Simulation {
   mutable bool pair_view_current_ = false, wall_view_current_ = false;
   void contacts_modified();  // the views must be compacted again
   std::vector<WallGeometry> wall_geometry_;
-  // Per-particle lists of the pair candidates between blocks farther apart than neighbours, which
+  // Per-particle lists of the pair candidates between blocks farther apart than load_reach, which
   // integrate() sums, in a fixed order; rebuilt with the neighbour list.
   std::vector<int> csr_start_, csr_entry_, csr_fill_;
   std::vector<long> block_first_;  // first pair candidate of each load block, then the end
-  long indexed_block_ = 0;         // the load_block of block_first_ and the per-particle lists
+  long indexed_block_ = 0, indexed_reach_ = -1;  // load_block and load_reach of block_first_ and the
+                                                // per-particle lists
+  std::vector<long> block_cost_;  // per load block, its force loop time at the last step [ns]
+  std::vector<long> block_done_;      // per load block, the epoch of the force loop that last summed it
+  long force_epoch_ = 0;              // force loops run (BlockLoads::epoch)
+  std::vector<long> thread_runs_;     // the first load block of each thread's run, then the end
   std::vector<Vec3> block_force_, block_torque_;  // per slot, the sums of the force loop (BlockLoads)
   std::vector<int> wall_runs_;  // first wall candidate of each particle, then the end
 };
