@@ -11,6 +11,7 @@
 #include <string>
 
 #include "generation/fill.hpp"
+#include "sim/block_times.hpp"
 #include "sim/simulation.hpp"
 
 namespace dem {
@@ -136,6 +137,38 @@ TEST(Determinism, StorageOrderChangesOnlyTheLastBits) {
   EXPECT_LT(dv, 1e-12 * 0.2);  // the initial speeds are up to 0.2 m/s
   EXPECT_EQ(plain.pair_contacts().key_i, sorted.pair_contacts().key_i);
   EXPECT_EQ(plain.pair_contacts().key_j, sorted.pair_contacts().key_j);
+}
+
+// The threads' shares of a blocked loop (sim/block_times.hpp): contiguous runs that cover every
+// block once, each ending at the block boundary nearest its share of the last step's times.
+TEST(BlockTimes, RunsCoverEveryBlockOnceAndEndNearestTheirShare) {
+  BlockTimes t;
+  t.fit(4, [](long) { return 1L; });
+  EXPECT_EQ(t.total, 4);
+  t.ns = {10, 10, 10, 70};
+  t.fit(4, [](long) { return 1L; });  // same count: the times stay
+  EXPECT_EQ(t.total, 100);
+  // Two threads: 30 / 70 is the nearest split to 50 / 50 that keeps the runs contiguous.
+  EXPECT_EQ(t.run_start(0, 2), 0);
+  EXPECT_EQ(t.run_start(1, 2), 3);
+  EXPECT_EQ(t.run_start(2, 2), 4);
+  // Even times: even runs; more threads than blocks: some runs are empty, none overlap.
+  t.ns.assign(6, 5);
+  t.fit(6, [](long) { return 1L; });
+  EXPECT_EQ(t.run_start(1, 3), 2);
+  EXPECT_EQ(t.run_start(2, 3), 4);
+  for (long threads : {1L, 2L, 5L, 9L}) {
+    long previous = 0;
+    for (long u = 0; u <= threads; ++u) {
+      const long s = t.run_start(u, threads);
+      EXPECT_GE(s, previous) << threads << " threads";
+      previous = s;
+    }
+    EXPECT_EQ(t.run_start(0, threads), 0);
+    EXPECT_EQ(t.run_start(threads, threads), 6);
+  }
+  t.fit(2, [](long b) { return 7 + b; });  // the count changed: the estimates
+  EXPECT_EQ(t.ns, (std::vector<long>{7, 8}));
 }
 
 }  // namespace

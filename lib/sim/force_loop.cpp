@@ -15,10 +15,10 @@ namespace dem {
 namespace {
 
 // Each contact and each block of particles is written by one thread only; no force is added
-// atomically (DESIGN.md). Each thread takes a contiguous run of blocks, and the integration gives
-// it the same particles: candidates are stored along the particles' order, so a thread mostly
-// reads particles that stay in its own core's cache. (Chunks dealt in turn balanced the threads
-// better but made the cores trade cache lines every step: 40 % slower on 2 cores.)
+// atomically (DESIGN.md). Each thread takes a contiguous run of blocks, as in the integration:
+// candidates are stored along the particles' order, so a thread mostly reads particles that stay
+// in its own core's cache. (Chunks dealt in turn balanced the threads better but made the cores
+// trade cache lines every step: 40 % slower on 2 cores.)
 // Each loop also returns the largest overlap relative to the smaller radius (a stability check).
 constexpr long kChunk = 256;  // candidates per pass-1/pass-2 chunk
 
@@ -143,34 +143,16 @@ double pair_forces(const ForceLoopInput& in, ContactList& pc, BlockLoads& out) {
   const long blocks = static_cast<long>(out.first.size()) - 1;
   const long slots = static_cast<long>(in.particles.size());
   const long phases = out.reach + 1;
-  // A block's work: the time it took at the last step (what it costs depends on how many of its
-  // candidates touch, on held particles, on the caches: a count balanced two threads within 30 %
-  // at best); before any is timed, its candidates.
-  if (static_cast<long>(out.cost.size()) != blocks) {
-    out.cost.resize(blocks);
-    for (long b = 0; b < blocks; ++b) out.cost[b] = out.first[b + 1] - out.first[b] + 1;
-  }
+  out.times.fit(blocks, [&](long b) { return out.first[b + 1] - out.first[b] + 1; });  // candidates, until timed
   out.done.resize(blocks);
-  long total = 0;
-  for (long b = 0; b < blocks; ++b) total += out.cost[b];
   double worst = 0;
 #pragma omp parallel reduction(max : worst)
   {
     const long threads = omp_get_num_threads(), t = omp_get_thread_num();
-    // Each thread takes a contiguous run of blocks holding about its share of the work
-    // (candidates are stored along the particles' order: a thread mostly reads particles that
-    // stay in its core's cache), the same run in every phase.
-    auto run_start = [&](long u) {
-      long b = 0;
-      // The run ends at the block boundary nearest its share.
-      for (long before = 0; b < blocks && (u == threads || before + out.cost[b] / 2 < total * u / threads); ++b)
-        before += out.cost[b];
-      return b;
-    };
-    const long start = run_start(t), end = run_start(t + 1);
-#pragma omp single
-    out.runs.assign(threads + 1, blocks);  // (its implied barrier: every run is set before a cost changes)
-    out.runs[t] = start;
+    // Each thread takes a contiguous run of blocks holding about its share of the last step's
+    // time (sim/block_times.hpp), the same run in every phase.
+    const long start = out.times.run_start(t, threads), end = out.times.run_start(t + 1, threads);
+#pragma omp barrier  // every run is set before any block's time changes
     // reach + 1 phases: phase p takes the blocks b = p, p + reach + 1, ... A block's contacts are
     // added to both particles when the other lies in the same block or the `reach` after it, so
     // two blocks closer than reach + 1 write common blocks: the one of the earlier phase goes
@@ -199,8 +181,7 @@ double pair_forces(const ForceLoopInput& in, ContactList& pc, BlockLoads& out) {
           worst = std::max(worst, pair_chunk<Normal, Periodic, Fixed>(in, pc, out, first, last, reach_end));
         }
         std::atomic_ref<long>(out.done[b]).store(tick, std::memory_order_release);
-        const double took = omp_get_wtime() - tb;
-        out.cost[b] = 1 + static_cast<long>(1e9 * took);  // [ns]
+        out.times.record(b, omp_get_wtime() - tb);
       }
     }
   }

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "contact/contact_list.hpp"
+#include "sim/block_times.hpp"
 #include "state/materials.hpp"
 #include "state/particles.hpp"
 #include "state/periodic.hpp"
@@ -40,11 +41,9 @@ struct BlockLoads {
   long reach;                     // blocks after a block whose contacts with it are summed here
   const std::vector<long>& first; // where each block's candidates start (+ the end): those whose
                                   // smaller slot lies in the block (stored so, place_by_storage)
-  std::vector<long>& cost;        // per block: its time at the last step [ns], by which the
-                                  // next step shares the blocks out among the threads
+  BlockTimes& times;              // per block: its time at the last step, by which the threads
+                                  // share the blocks out
   std::vector<long>& done;        // per block: the epoch of the force loop that last summed it
-  std::vector<long>& runs;        // per thread: the first block it summed, then the end (the
-                                  // integration gives each thread the same particles)
   long epoch;                     // this force loop's: unlike any before it
   std::vector<Vec3>& force;       // per slot: sum of those contact forces [N]
   std::vector<Vec3>& torque;      // per slot: sum of a n x f_t, eq. 2.33-2.34 [N m]

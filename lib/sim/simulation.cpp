@@ -25,7 +25,7 @@ void Simulation::advance() {
   if (indexed_block_ != params.load_block || indexed_reach_ != params.load_reach) index_contacts_per_particle();
   block_force_.resize(particles.size());
   block_torque_.resize(particles.size());
-  BlockLoads loads{params.load_block, params.load_reach, block_first_, block_cost_, block_done_, thread_runs_, ++force_epoch_,
+  BlockLoads loads{params.load_block, params.load_reach, block_first_, force_times_, block_done_, ++force_epoch_,
                    block_force_, block_torque_};
   const double worst_overlap = compute_contact_forces(in, choose_force_variant(*this), pairs_, walls_, loads);
   contacts_modified();
@@ -284,45 +284,51 @@ void Simulation::integrate(bool any_fixed) {
   long bad = -1;
   // One pass: each particle's loads are summed and used at once (no per-particle force arrays to
   // write and read back: this loop is bound by memory traffic at 1e5 particles and more).
-  // Each thread takes the particles of the blocks it summed in the force loop (thread_runs_):
-  // they are in its core's cache. (Split evenly instead, a thread read half its particles' loads
-  // and positions from the other core's cache.)
+  // Each thread takes a contiguous run of blocks of particles (load_block slots each) sized by
+  // their times at the last step (sim/block_times.hpp): close to its run in the force loop, so its
+  // particles' loads and positions are in its core's cache. (Split evenly, a thread read half its
+  // particles from the other core's cache.)
   const long block = params.load_block;
-  const bool same_runs = static_cast<int>(thread_runs_.size()) == omp_get_max_threads() + 1;
+  const long blocks = (n + block - 1) / block;
+  integrate_times_.fit(blocks, [&](long b) { return std::min(block, n - b * block); });  // particles, until timed
 #pragma omp parallel reduction(max : bad)
   {
     const long threads = omp_get_num_threads(), t = omp_get_thread_num();
-    const bool runs = same_runs && threads + 1 == static_cast<long>(thread_runs_.size());
-    const long lo = runs ? std::min(n, thread_runs_[t] * block) : n * t / threads;
-    const long hi = runs ? std::min(n, thread_runs_[t + 1] * block) : n * (t + 1) / threads;
-    for (long i = lo; i < hi; ++i) {
-      if (any_fixed && fixed[i]) {  // held in place
-        v[i] = w[i] = Vec3::Zero();
-        continue;
+    const long start = integrate_times_.run_start(t, threads), end = integrate_times_.run_start(t + 1, threads);
+#pragma omp barrier  // every run is set before any block's time changes
+    for (long b = start; b < end; ++b) {
+      const double tb = omp_get_wtime();
+      const long lo = b * block, hi = std::min(n, lo + block);
+      for (long i = lo; i < hi; ++i) {
+        if (any_fixed && fixed[i]) {  // held in place
+          v[i] = w[i] = Vec3::Zero();
+          continue;
+        }
+        // The net load (eq. 2.31-2.34): gravity, the sums of the force loop (BlockLoads), then its
+        // contacts with particles in blocks farther apart, in the fixed order of
+        // index_contacts_per_particle: the same bits for any thread count. Mere candidates are skipped
+        // (they hold exact zeros, ContactList), here and in the block sums, so the candidate set,
+        // which depends on when the list was rebuilt, never changes a bit of the result; skipping
+        // reads a byte per candidate instead of 48.
+        Vec3 force = mass[i] * gravity + block_force[i];
+        Vec3 torque = block_torque[i];
+        for (int e = csr_start[i]; e < csr_start[i + 1]; ++e) {
+          const unsigned code = static_cast<unsigned>(csr_entry[e]);
+          const long k = code >> 1;
+          if (!active[k]) continue;
+          // Torques, eq. 2.33-2.34: M = a n x f_t for i and j alike (M_j = (a_j / a_i) M_i).
+          force += (code & 1) ? Vec3(-sum[k].force) : sum[k].force;  // eq. 2.31-2.32
+          torque += radius[i] * sum[k].moment;
+        }
+        v[i] = (ar * v[i] + force * (step_dt / mass[i])) * br;
+        w[i] = (at * w[i] + torque * (step_dt / sphere_inertia(mass[i], radius[i]))) * bt;
+        x[i] += v[i] * step_dt;
+        if (wrap) box.wrap(x[i], image[i]);
+        // NaN or Inf in any component makes the sum NaN or Inf (so does a sum beyond 1e308: a state as
+        // broken). Eigen's allFinite on each vector cost 7 % of a settle's time.
+        if (!std::isfinite(x[i].sum() + v[i].sum() + w[i].sum())) bad = std::max(bad, i);
       }
-      // The net load (eq. 2.31-2.34): gravity, the sums of the force loop (BlockLoads), then its
-      // contacts with particles in blocks farther apart, in the fixed order of
-      // index_contacts_per_particle: the same bits for any thread count. Mere candidates are skipped
-      // (they hold exact zeros, ContactList), here and in the block sums, so the candidate set,
-      // which depends on when the list was rebuilt, never changes a bit of the result; skipping
-      // reads a byte per candidate instead of 48.
-      Vec3 force = mass[i] * gravity + block_force[i];
-      Vec3 torque = block_torque[i];
-      for (int e = csr_start[i]; e < csr_start[i + 1]; ++e) {
-        const unsigned code = static_cast<unsigned>(csr_entry[e]);
-        const long k = code >> 1;
-        if (!active[k]) continue;
-        // Torques, eq. 2.33-2.34: M = a n x f_t for i and j alike (M_j = (a_j / a_i) M_i).
-        force += (code & 1) ? Vec3(-sum[k].force) : sum[k].force;  // eq. 2.31-2.32
-        torque += radius[i] * sum[k].moment;
-      }
-      v[i] = (ar * v[i] + force * (step_dt / mass[i])) * br;
-      w[i] = (at * w[i] + torque * (step_dt / sphere_inertia(mass[i], radius[i]))) * bt;
-      x[i] += v[i] * step_dt;
-      if (wrap) box.wrap(x[i], image[i]);
-      // NaN or Inf in any component makes the sum NaN or Inf (so does a sum beyond 1e308: a state as
-      // broken). Eigen's allFinite on each vector cost 7 % of a settle's time.
-      if (!std::isfinite(x[i].sum() + v[i].sum() + w[i].sum())) bad = std::max(bad, i);
+      integrate_times_.record(b, omp_get_wtime() - tb);
     }
   }
   if (bad >= 0) {

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "contact/contact_list.hpp"
+#include "sim/block_times.hpp"
 #include "sim/energy_audit.hpp"
 #include "search/neighbour_list.hpp"
 #include "state/materials.hpp"
@@ -140,10 +141,9 @@ class Simulation {
   std::vector<long> block_first_;  // first pair candidate of each load block, then the end
   long indexed_block_ = 0, indexed_reach_ = -1;  // load_block and load_reach of block_first_ and the
                                                 // per-particle lists
-  std::vector<long> block_cost_;  // per load block, its force loop time at the last step [ns]
-  std::vector<long> block_done_;      // per load block, the epoch of the force loop that last summed it
-  long force_epoch_ = 0;              // force loops run (BlockLoads::epoch)
-  std::vector<long> thread_runs_;     // the first load block of each thread's run, then the end
+  BlockTimes force_times_, integrate_times_;  // per load block, its time in each loop at the last step
+  std::vector<long> block_done_;  // per load block, the epoch of the force loop that last summed it
+  long force_epoch_ = 0;          // force loops run (BlockLoads::epoch)
   std::vector<Vec3> block_force_, block_torque_;  // per slot, the sums of the force loop (BlockLoads)
   std::vector<int> wall_runs_;  // first wall candidate of each particle, then the end
 };
