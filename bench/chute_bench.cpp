@@ -5,6 +5,10 @@
 //   chute_bench scaled N STEPS THREADS
 //                                    the same flow on a wider chute of about N spheres (same depth,
 //                                    chute_footprint): the cost per particle-step against N
+//   chute_bench lattice N STEPS THREADS
+//                                    about N spheres pressed together on a periodic lattice
+//                                    (lattice_scene.hpp): 6 contacts per sphere at any N, the
+//                                    code's own cost per particle-step against N
 //   chute_bench lammps-data FILE     writes the same initial state as a LAMMPS data file
 // The loop time covers the steps only (scene construction excluded), as LAMMPS's "Loop time".
 #include <omp.h>
@@ -17,19 +21,21 @@
 
 #include "bench_report.hpp"
 #include "chute_scene.hpp"
+#include "lattice_scene.hpp"
 
 using namespace dem;
 
 int main(int argc, char** argv) {
   try {
     const bool scaled = argc == 5 && std::strcmp(argv[1], "scaled") == 0;
-    if ((argc == 4 && std::strcmp(argv[1], "run") == 0) || scaled) {
+    const bool lattice = argc == 5 && std::strcmp(argv[1], "lattice") == 0;
+    if ((argc == 4 && std::strcmp(argv[1], "run") == 0) || scaled || lattice) {
       const long steps = std::atol(argv[argc - 2]);
       const int threads = std::atoi(argv[argc - 1]);
       omp_set_num_threads(threads);
       const long rss_before = bench::peak_rss_kb();
       const auto [nx, ny] = scaled ? bench::chute_footprint(std::atol(argv[2])) : std::pair{bench::kChuteNx, bench::kChuteNy};
-      Simulation sim = bench::chute_scene(nx, ny);
+      Simulation sim = lattice ? bench::lattice_scene(std::atol(argv[2])) : bench::chute_scene(nx, ny);
       bench::timed_run(sim, steps, threads, rss_before);
       return 0;
     }
@@ -41,6 +47,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "chute_bench: %s\n", e.what());
     return 1;
   }
-  std::fprintf(stderr, "usage: chute_bench run STEPS THREADS | chute_bench scaled N STEPS THREADS | chute_bench lammps-data FILE\n");
+  std::fprintf(stderr, "usage: chute_bench run STEPS THREADS | chute_bench scaled N STEPS THREADS | chute_bench lattice N STEPS THREADS | "
+                       "chute_bench lammps-data FILE\n");
   return 2;
 }
