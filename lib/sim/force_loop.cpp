@@ -30,9 +30,9 @@ inline double relative_overlap_if_larger(double overlap, double radius, double w
 }
 
 // The candidates [first, last) of one block; contacts whose two slots lie before `reach_end` (in
-// this block or the `reach` after it) are added to both particles' loads. Periodic: distances to the nearest
-// image; Fixed: some particles are held in place. Both are template parameters so that a scene
-// without them pays nothing.
+// this block or the `reach` after it) are added to both particles' loads. Periodic: distances to
+// the nearest image; Fixed: some particles are held in place. Both are template parameters so
+// that a scene without them pays nothing.
 template <class Normal, bool Periodic, bool Fixed>
 double pair_chunk(const ForceLoopInput& in, ContactList& pc, BlockLoads& out, long first, long last, int reach_end) {
   // The arrays' addresses and the box in locals: the loop stores bytes (active, bonded), and a byte
@@ -164,7 +164,7 @@ double pair_forces(const ForceLoopInput& in, ContactList& pc, BlockLoads& out) {
     const bool down = t % 2 == 0;
     const long tick = out.epoch;
     for (long phase = 0; phase < phases; ++phase) {
-      long first_b = start + ((phase - start) % phases + phases) % phases;  // the run's first block of this phase
+      const long first_b = start + ((phase - start) % phases + phases) % phases;  // the run's first of this phase
       if (first_b >= end) continue;
       const long last_b = first_b + (end - 1 - first_b) / phases * phases;
       for (long b = down ? last_b : first_b; b >= first_b && b <= last_b; b += down ? -phases : phases) {
