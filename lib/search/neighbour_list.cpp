@@ -18,7 +18,8 @@ bool NeighbourList::needs_rebuild(const Particles& p, const PeriodicBox& box, co
   int changed_ids = 0;
   const long n = static_cast<long>(p.size());
   const bool periodic = box.any();
-  // Bitwise, not &&: the loop then has no branch and the compiler vectorizes it.
+  // Bitwise, not &&: no branch on the ids per particle (the loop is not vectorized: the periodic
+  // image has branches).
 #pragma omp parallel for schedule(static) reduction(max : dp2) reduction(| : changed_ids)
   for (long k = 0; k < n; ++k) {
     const Vec3 moved = p.x[k] - x_build_[k];

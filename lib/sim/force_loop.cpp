@@ -4,8 +4,8 @@
 
 #include <algorithm>
 #include <atomic>
-#include <thread>
 #include <cmath>
+#include <thread>
 
 #include "contact/contact_law.hpp"
 #include "sim/simulation.hpp"
@@ -188,6 +188,8 @@ double pair_forces(const ForceLoopInput& in, ContactList& pc, BlockLoads& out) {
   return worst;
 }
 
+// After the pair loop: each particle's wall contacts are added to its loads (one run per particle,
+// so one thread per particle), in the run's order.
 template <class Normal>
 double wall_forces(const ForceLoopInput& in, ContactList& wc, BlockLoads& out) {
   const Particles& p = in.particles;
