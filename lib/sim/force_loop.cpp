@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "contact/contact_law.hpp"
+#include "sim/find_contacts.hpp"
 #include "sim/simulation.hpp"
 
 namespace dem {
@@ -35,11 +36,8 @@ inline double relative_overlap_if_larger(double overlap, double radius, double w
 // that a scene without them pays nothing.
 template <class Normal, bool Periodic, bool Fixed>
 double pair_chunk(const ForceLoopInput& in, ContactList& pc, BlockLoads& out, long first, long last, int reach_end) {
-  // The arrays' addresses and the box in locals: the loop stores bytes (active, bonded), and a byte
-  // store may change any memory for the compiler, the vectors' own fields included; reading through
-  // the vectors it reloaded every array's address after each such store.
+  // The arrays' addresses and the box in locals (see CandidateArrays).
   const Particles& p = in.particles;
-  const Vec3* const x = p.x.data();
   const Vec3* const v = p.v.data();
   const Vec3* const w = p.w.data();
   const double* const radius = p.radius.data();
@@ -48,7 +46,6 @@ double pair_chunk(const ForceLoopInput& in, ContactList& pc, BlockLoads& out, lo
   const std::uint8_t* const fixed = p.fixed.data();
   const int* const slot_i = pc.slot_i.data();
   const int* const slot_j = pc.slot_j.data();
-  std::uint8_t* const active = pc.active.data();
   std::uint8_t* const bonded = pc.bonded.data();
   Vec3* const spring = pc.spring.data();
   Vec3* const normal = pc.normal.data();
@@ -59,33 +56,10 @@ double pair_chunk(const ForceLoopInput& in, ContactList& pc, BlockLoads& out, lo
   const MaterialTable& materials = in.materials;
   const double dt = in.dt;
   double worst = 0;
-  // Pass 1: which candidates are contacts (touching, or held by a bond). The others get no force
-  // and lose their history. Pass 2 then runs the law without an unpredictable branch, on the
-  // separations pass 1 found (a contact's positions are gathered and its nearest image taken once).
-  int contact[kChunk];
-  Vec3 separations[kChunk];
-  int m = 0;
-  for (long k = first; k < last; ++k) {
-    const int i = slot_i[k], j = slot_j[k];
-    const std::uint8_t was = active[k];
-    const Vec3 d = separation<Periodic>(box, x[i], x[j]);
-    // Bitwise, not ||: whether a candidate touches is a coin toss to the branch predictor.
-    std::uint8_t now = static_cast<std::uint8_t>(spheres_touch(d, radius[i], radius[j])) | bonded[k];
-    if constexpr (Fixed) {
-      // A bond between two held particles is dropped too, so that nothing depends on when the
-      // list was last rebuilt.
-      const std::uint8_t free = !both_held(fixed[i], fixed[j]);
-      now &= free;
-      bonded[k] &= free;
-    }
-    active[k] = now;
-    contact[m] = static_cast<int>(k);
-    separations[m] = d;
-    m += now;
-    // A candidate that was no contact already holds zeros (ContactList): in a dense bed most
-    // candidates are such, and rewriting their 72 bytes every step cost memory bandwidth.
-    if (!now && was) spring[k] = Vec3::Zero(), sum[k] = ContactSum();
-  }
+  // Pass 1 (find_contacts.hpp): which candidates are contacts, and their separations.
+  int contact[kChunk + kFoundPadding];
+  double dx[kChunk + kFoundPadding], dy[kChunk + kFoundPadding], dz[kChunk + kFoundPadding];
+  const int m = find_contacts<Periodic, Fixed>(CandidateArrays(p, pc), box, first, last, {contact, dx, dy, dz});
   // Pass 2, in three loops over the chunk's contacts: their kinematics, their springs turned into
   // the tangent plane, the law. Each loop is short and its contacts independent, so the processor
   // overlaps the divisions and square roots of several contacts; in one long loop each contact
@@ -94,7 +68,7 @@ double pair_chunk(const ForceLoopInput& in, ContactList& pc, BlockLoads& out, lo
   for (int e = 0; e < m; ++e) {
     const long k = contact[e];
     const int i = slot_i[k], j = slot_j[k];
-    const Vec3& d = separations[e];
+    const Vec3 d(dx[e], dy[e], dz[e]);
     const double dist = d.norm();
     ContactKinematics& c = kin[e];
     c.n = d * (1.0 / dist);

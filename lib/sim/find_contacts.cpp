@@ -1,0 +1,147 @@
+#include "sim/find_contacts.hpp"
+
+#include <array>
+#include <atomic>
+#include <cstring>
+
+#if defined(__x86_64__)
+#include <immintrin.h>
+#define DEM_HAVE_AVX2_PASS 1
+#endif
+
+namespace dem {
+
+namespace {
+
+std::atomic<bool> simd_on{true};
+
+#ifdef DEM_HAVE_AVX2_PASS
+bool processor_has_avx2() {
+  static const bool has = __builtin_cpu_supports("avx2");
+  return has;
+}
+
+// For each mask of four lanes, the 32-bit lanes that move the set lanes' doubles to the front in
+// order (a compress, which AVX2 lacks): lane q takes double l_q, i.e. 32-bit lanes 2 l_q, 2 l_q + 1.
+constexpr std::array<std::array<int, 8>, 16> compress_doubles() {
+  std::array<std::array<int, 8>, 16> t{};
+  for (int mask = 0; mask < 16; ++mask) {
+    int q = 0;
+    for (int l = 0; l < 4; ++l)
+      if (mask >> l & 1) t[mask][2 * q] = 2 * l, t[mask][2 * q + 1] = 2 * l + 1, ++q;
+  }
+  return t;
+}
+// The same for four 32-bit lanes (the candidates' positions), in the low half.
+constexpr std::array<std::array<int, 8>, 16> compress_ints() {
+  std::array<std::array<int, 8>, 16> t{};
+  for (int mask = 0; mask < 16; ++mask) {
+    int q = 0;
+    for (int l = 0; l < 4; ++l)
+      if (mask >> l & 1) t[mask][q++] = l;
+  }
+  return t;
+}
+alignas(32) constexpr std::array<std::array<int, 8>, 16> kCompressDoubles = compress_doubles();
+alignas(32) constexpr std::array<std::array<int, 8>, 16> kCompressInts = compress_ints();
+
+// base[index] for four 32-bit indices. (The masked form: the plain one starts from an undefined
+// register, which GCC 12 warns may be used uninitialized.)
+[[gnu::target("avx2")]] inline __m256d gather(const double* base, __m128i index) {
+  return _mm256_mask_i32gather_pd(_mm256_setzero_pd(), base, index, _mm256_castsi256_pd(_mm256_set1_epi64x(-1)), 8);
+}
+
+// d - L s with s = +1 where d > L/2, -1 where d < -L/2, else 0: PeriodicBox::nearest's d - L or
+// d + L or d, to the bit (L s is exactly +-L or 0), four lanes at once.
+[[gnu::target("avx2")]] inline __m256d nearest_image(__m256d d, double length) {
+  const __m256d L = _mm256_set1_pd(length), half = _mm256_set1_pd(0.5 * length), minus_half = _mm256_set1_pd(-(0.5 * length));
+  const __m256d up = _mm256_and_pd(_mm256_cmp_pd(d, half, _CMP_GT_OQ), _mm256_set1_pd(1.0));
+  const __m256d down = _mm256_and_pd(_mm256_cmp_pd(d, minus_half, _CMP_LT_OQ), _mm256_set1_pd(1.0));
+  return _mm256_sub_pd(d, _mm256_mul_pd(L, _mm256_sub_pd(up, down)));
+}
+
+// Four candidates at a time: the positions gathered (x is 3 doubles per particle), the separation
+// and the touch test in the plain loop's order of operations ((dx^2 + dy^2) + dz^2 < r^2), the
+// contacts moved to the front of the lanes and stored; the last one to three by the plain loop.
+template <bool Periodic, bool Fixed>
+[[gnu::target("avx2")]] int find_contacts_avx2(const CandidateArrays& a, const PeriodicBox& box, long first, long last,
+                                               const FoundInChunk& found) {
+  const double* const x = a.x[0].data();
+  int m = 0;
+  long k = first;
+  for (; k + 4 <= last; k += 4) {
+    const __m128i i = _mm_loadu_si128(reinterpret_cast<const __m128i*>(a.slot_i + k));
+    const __m128i j = _mm_loadu_si128(reinterpret_cast<const __m128i*>(a.slot_j + k));
+    const __m128i i3 = _mm_add_epi32(i, _mm_add_epi32(i, i)), j3 = _mm_add_epi32(j, _mm_add_epi32(j, j));
+    __m256d dx = _mm256_sub_pd(gather(x + 0, j3), gather(x + 0, i3));
+    __m256d dy = _mm256_sub_pd(gather(x + 1, j3), gather(x + 1, i3));
+    __m256d dz = _mm256_sub_pd(gather(x + 2, j3), gather(x + 2, i3));
+    if constexpr (Periodic) {
+      if (box.axis[0]) dx = nearest_image(dx, box.length(0));
+      if (box.axis[1]) dy = nearest_image(dy, box.length(1));
+      if (box.axis[2]) dz = nearest_image(dz, box.length(2));
+    }
+    const __m256d r = _mm256_add_pd(gather(a.radius, i), gather(a.radius, j));
+    const __m256d d2 = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)), _mm256_mul_pd(dz, dz));
+    int now = _mm256_movemask_pd(_mm256_cmp_pd(d2, _mm256_mul_pd(r, r), _CMP_LT_OQ));
+    std::uint32_t bonded4, active4;
+    std::memcpy(&bonded4, a.bonded + k, 4);
+    std::memcpy(&active4, a.active + k, 4);
+    // One bit per lane from the four bytes (0 or 1 each).
+    const auto lanes = [](std::uint32_t bytes) {
+      return static_cast<int>((bytes & 1) | (bytes >> 7 & 2) | (bytes >> 14 & 4) | (bytes >> 21 & 8));
+    };
+    now |= lanes(bonded4);
+    if constexpr (Fixed) {
+      int held = 0;
+      for (int l = 0; l < 4; ++l) held |= both_held(a.fixed[a.slot_i[k + l]], a.fixed[a.slot_j[k + l]]) << l;
+      if (held) {
+        now &= ~held;
+        for (int l = 0; l < 4; ++l)
+          if (held >> l & 1) a.bonded[k + l] = 0;
+      }
+    }
+    const std::uint32_t now4 = (now & 1) | (now & 2) << 7 | (now & 4) << 14 | (now & 8) << 21;
+    std::memcpy(a.active + k, &now4, 4);
+    if (const int lost = lanes(active4) & ~now)  // rare: a contact ends
+      for (int l = 0; l < 4; ++l)
+        if (lost >> l & 1) a.spring[k + l] = Vec3::Zero(), a.sum[k + l] = ContactSum();
+    const __m256i to_front = _mm256_load_si256(reinterpret_cast<const __m256i*>(kCompressDoubles[now].data()));
+    _mm256_storeu_pd(found.dx + m, _mm256_castsi256_pd(_mm256_permutevar8x32_epi32(_mm256_castpd_si256(dx), to_front)));
+    _mm256_storeu_pd(found.dy + m, _mm256_castsi256_pd(_mm256_permutevar8x32_epi32(_mm256_castpd_si256(dy), to_front)));
+    _mm256_storeu_pd(found.dz + m, _mm256_castsi256_pd(_mm256_permutevar8x32_epi32(_mm256_castpd_si256(dz), to_front)));
+    const __m256i positions = _mm256_add_epi32(_mm256_set1_epi32(static_cast<int>(k)), _mm256_setr_epi32(0, 1, 2, 3, 0, 0, 0, 0));
+    const __m256i ints_to_front = _mm256_load_si256(reinterpret_cast<const __m256i*>(kCompressInts[now].data()));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(found.contact + m),
+                     _mm256_castsi256_si128(_mm256_permutevar8x32_epi32(positions, ints_to_front)));
+    m += __builtin_popcount(now);
+  }
+  return find_contacts_plain<Periodic, Fixed>(a, box, k, last, found, m);
+}
+#endif
+
+}  // namespace
+
+bool simd_pass_available() {
+#ifdef DEM_HAVE_AVX2_PASS
+  return processor_has_avx2();
+#else
+  return false;
+#endif
+}
+void set_simd_pass(bool on) { simd_on.store(on, std::memory_order_relaxed); }
+
+template <bool Periodic, bool Fixed>
+int find_contacts(const CandidateArrays& a, const PeriodicBox& box, long first, long last, const FoundInChunk& found) {
+#ifdef DEM_HAVE_AVX2_PASS
+  if (processor_has_avx2() && simd_on.load(std::memory_order_relaxed)) return find_contacts_avx2<Periodic, Fixed>(a, box, first, last, found);
+#endif
+  return find_contacts_plain<Periodic, Fixed>(a, box, first, last, found, 0);
+}
+
+template int find_contacts<false, false>(const CandidateArrays&, const PeriodicBox&, long, long, const FoundInChunk&);
+template int find_contacts<false, true>(const CandidateArrays&, const PeriodicBox&, long, long, const FoundInChunk&);
+template int find_contacts<true, false>(const CandidateArrays&, const PeriodicBox&, long, long, const FoundInChunk&);
+template int find_contacts<true, true>(const CandidateArrays&, const PeriodicBox&, long, long, const FoundInChunk&);
+
+}  // namespace dem

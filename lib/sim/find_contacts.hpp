@@ -1,0 +1,90 @@
+#pragma once
+// Pass 1 of the force loop: which pair candidates of a chunk are contacts (touching, or held by a
+// bond). The others get no force and lose their history. Pass 2 (force_loop.cpp) then runs the
+// law on the contacts found, without an unpredictable branch, on the separations found here.
+//
+// Two versions give the same bits: a plain loop, and one that tests four candidates at once with
+// AVX2 where the processor has it (find_contacts_avx2.cpp: the same operations in the same order
+// per candidate, so the same separations and the same decisions). Pass 1 reads every candidate of
+// the neighbour list, three or more per contact, and was a third of the chute's time.
+#include <cstdint>
+
+#include "contact/contact_list.hpp"
+#include "core/types.hpp"
+#include "state/particles.hpp"
+#include "state/periodic.hpp"
+
+namespace dem {
+
+// What pass 1 reads and writes, as bare arrays: the loop stores bytes (active, bonded), and a byte
+// store may change any memory for the compiler, the vectors' own fields included; reading through
+// the vectors it reloaded every array's address after each such store.
+struct CandidateArrays {
+  const Vec3* x;
+  const double* radius;
+  const std::uint8_t* fixed;
+  const int* slot_i;
+  const int* slot_j;
+  std::uint8_t* active;
+  std::uint8_t* bonded;
+  Vec3* spring;
+  ContactSum* sum;
+
+  CandidateArrays(const Particles& p, ContactList& pc)
+      : x(p.x.data()), radius(p.radius.data()), fixed(p.fixed.data()), slot_i(pc.slot_i.data()), slot_j(pc.slot_j.data()),
+        active(pc.active.data()), bonded(pc.bonded.data()), spring(pc.spring.data()), sum(pc.sum.data()) {}
+};
+
+// The contacts found in a chunk: candidate positions and separations x_j - x_i (nearest image),
+// as separate arrays. Each array holds at least kFoundPadding entries more than the chunk has
+// candidates (the four-wide version stores four at a time).
+constexpr int kFoundPadding = 4;
+struct FoundInChunk {
+  int* contact;
+  double* dx;
+  double* dy;
+  double* dz;
+};
+
+// Whether the four-wide version runs: where the processor has AVX2 (simd_pass_available) and
+// unless turned off (tests turn it off to compare the two versions bit for bit).
+bool simd_pass_available();
+void set_simd_pass(bool on);
+
+// Candidates [first, last): sets active (touching or bonded; with Fixed, never between two held
+// particles, whose bond is dropped too, so that nothing depends on when the list was last rebuilt),
+// clears the spring and sum of a contact lost, and stores each contact's position and separation
+// in `found` in candidate order. Returns how many.
+template <bool Periodic, bool Fixed>
+int find_contacts(const CandidateArrays& a, const PeriodicBox& box, long first, long last, const FoundInChunk& found);
+
+// The plain loop, from candidate `first` on, appending to `found` from entry m (the four-wide
+// version finishes a chunk's last one to three candidates with it).
+template <bool Periodic, bool Fixed>
+inline int find_contacts_plain(const CandidateArrays& a, const PeriodicBox& box, long first, long last,
+                               const FoundInChunk& found, int m) {
+  for (long k = first; k < last; ++k) {
+    const int i = a.slot_i[k], j = a.slot_j[k];
+    const std::uint8_t was = a.active[k];
+    Vec3 d = a.x[j] - a.x[i];
+    if constexpr (Periodic) d = box.nearest(d);
+    const double r = a.radius[i] + a.radius[j];
+    // Bitwise, not ||: whether a candidate touches is a coin toss to the branch predictor.
+    std::uint8_t now = static_cast<std::uint8_t>(d.squaredNorm() < r * r) | a.bonded[k];
+    if constexpr (Fixed) {
+      const std::uint8_t free = !both_held(a.fixed[i], a.fixed[j]);
+      now &= free;
+      a.bonded[k] &= free;
+    }
+    a.active[k] = now;
+    found.contact[m] = static_cast<int>(k);
+    found.dx[m] = d.x(), found.dy[m] = d.y(), found.dz[m] = d.z();
+    m += now;
+    // A candidate that was no contact already holds zeros (ContactList): in a dense bed most
+    // candidates are such, and rewriting their 72 bytes every step cost memory bandwidth.
+    if (!now && was) a.spring[k] = Vec3::Zero(), a.sum[k] = ContactSum();
+  }
+  return m;
+}
+
+}  // namespace dem

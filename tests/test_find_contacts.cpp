@@ -1,0 +1,135 @@
+// Pass 1 of the force loop (sim/find_contacts.hpp): which candidates are contacts. Its four-wide
+// version must decide exactly as the plain loop and as the definition (|x_j - x_i| < a_i + a_j
+// through the nearest image, or bonded; never two held particles), with the same separations to
+// the bit.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include "sim/find_contacts.hpp"
+
+namespace dem {
+namespace {
+
+struct Pass1Result {
+  int m = 0;
+  std::vector<int> contact;
+  std::vector<double> dx, dy, dz;
+  std::vector<std::uint8_t> active, bonded;
+  std::vector<Vec3> spring;
+};
+
+// Random polydisperse particles in a box periodic along x and y, a third of them held; candidates
+// are random pairs, a third of them moved to touch within a few ulps of a_i + a_j (either side),
+// some across the periodic boundaries; random bonds and random contacts of the last step.
+struct Pass1Case {
+  Particles p;
+  ContactList pc;
+  PeriodicBox box;
+
+  explicit Pass1Case(int candidates) {
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> u(0, 1);
+    box.axis = {true, true, false};
+    box.lo = Vec3(-1, 0, 0), box.hi = Vec3(2, 4, 5);
+    for (int n = 0; n < 400; ++n) {
+      p.add(n, Vec3(-1 + 3 * u(rng), 4 * u(rng), 5 * u(rng)), 0.05 + 0.45 * u(rng), 1000, 0);
+      p.fixed[n] = u(rng) < 0.3;
+    }
+    std::uniform_int_distribution<int> slot(0, 399);
+    pc.resize(candidates);
+    for (int k = 0; k < candidates; ++k) {
+      int i = slot(rng), j = slot(rng);
+      while (j == i) j = slot(rng);
+      if (u(rng) < 0.35) {  // j placed at a_i + a_j from i, give or take a few ulps, maybe across a boundary
+        const Vec3 dir = Vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5).normalized();
+        const double r = p.radius[i] + p.radius[j];
+        double dist = r;
+        for (int ulps = static_cast<int>(u(rng) * 7) - 3; ulps != 0; ulps += ulps > 0 ? -1 : 1)
+          dist = std::nextafter(dist, ulps > 0 ? 10.0 : 0.0);
+        Vec3 xj = p.x[i] + dist * dir;
+        Vec3i image = Vec3i::Zero();
+        box.wrap_far(xj, image);
+        if (xj.z() > 0 && xj.z() < 5) p.x[j] = xj;
+      }
+      pc.slot_i[k] = i, pc.slot_j[k] = j;
+      pc.bonded[k] = u(rng) < 0.1;
+      pc.active[k] = u(rng) < 0.5;
+      pc.spring[k] = pc.active[k] ? Vec3(1, 2, 3) : Vec3::Zero();
+      pc.sum[k] = pc.active[k] ? ContactSum{Vec3(4, 5, 6), Vec3(7, 8, 9)} : ContactSum();
+    }
+  }
+
+  // Pass 1 over [first, last) of a copy of the candidates.
+  Pass1Result run(long first, long last) const {
+    ContactList c = pc;
+    Pass1Result r;
+    const std::size_t room = last - first + kFoundPadding;
+    r.contact.resize(room), r.dx.resize(room), r.dy.resize(room), r.dz.resize(room);
+    r.m = find_contacts<true, true>(CandidateArrays(p, c), box, first, last, {r.contact.data(), r.dx.data(), r.dy.data(), r.dz.data()});
+    r.contact.resize(r.m), r.dx.resize(r.m), r.dy.resize(r.m), r.dz.resize(r.m);
+    r.active = c.active, r.bonded = c.bonded, r.spring = c.spring;
+    return r;
+  }
+};
+
+template <class T>
+bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+}
+
+// Chunks of 1 to 9 candidates and a long one, at odd offsets: the four-wide loop and the plain
+// loop that finishes a chunk's last one to three candidates both run.
+TEST(FindContacts, FourWideAndPlainLoopsDecideAsTheDefinitionWithTheSameBits) {
+  const Pass1Case c(2000);
+  if (!simd_pass_available()) GTEST_SKIP() << "no AVX2 on this processor: only the plain loop runs";
+  struct Range {
+    long first, last;
+  };
+  std::vector<Range> ranges = {{3, 1700}};
+  for (long n = 1; n <= 9; ++n) ranges.push_back({1700 + 10 * n + n % 3, 1700 + 10 * n + n % 3 + n});
+  int near_threshold = 0, across_boundary = 0;
+  for (const Range& range : ranges) {
+    set_simd_pass(false);
+    const Pass1Result plain = c.run(range.first, range.last);
+    set_simd_pass(true);
+    const Pass1Result wide = c.run(range.first, range.last);
+    const std::string what = "candidates " + std::to_string(range.first) + " to " + std::to_string(range.last);
+    ASSERT_EQ(plain.m, wide.m) << what;
+    EXPECT_EQ(plain.contact, wide.contact) << what;
+    EXPECT_TRUE(same_bits(plain.dx, wide.dx) && same_bits(plain.dy, wide.dy) && same_bits(plain.dz, wide.dz)) << what;
+    EXPECT_EQ(plain.active, wide.active) << what;
+    EXPECT_EQ(plain.bonded, wide.bonded) << what;
+    EXPECT_TRUE(same_bits(plain.spring, wide.spring)) << what;
+    // The definition, candidate by candidate.
+    int e = 0;
+    for (long k = range.first; k < range.last; ++k) {
+      const int i = c.pc.slot_i[k], j = c.pc.slot_j[k];
+      const Vec3 d = c.box.nearest(c.p.x[j] - c.p.x[i]);
+      const double r = c.p.radius[i] + c.p.radius[j];
+      const bool held = c.p.fixed[i] && c.p.fixed[j];
+      const bool contact = !held && (d.squaredNorm() < r * r || c.pc.bonded[k]);
+      near_threshold += std::abs(d.norm() - r) < 1e-12 * r;
+      across_boundary += contact && d != c.p.x[j] - c.p.x[i];
+      ASSERT_EQ(wide.active[k], contact) << what << ", candidate " << k;
+      EXPECT_EQ(wide.bonded[k], c.pc.bonded[k] && !held) << what << ", candidate " << k;
+      const bool lost = c.pc.active[k] && !contact;
+      EXPECT_EQ(wide.spring[k], lost ? Vec3::Zero() : c.pc.spring[k]) << what << ", candidate " << k;
+      if (contact) {
+        ASSERT_LT(e, wide.m);
+        EXPECT_EQ(wide.contact[e], k);
+        EXPECT_EQ(Vec3(wide.dx[e], wide.dy[e], wide.dz[e]), d);
+        ++e;
+      }
+    }
+    EXPECT_EQ(e, wide.m) << what;
+  }
+  // (Later placements move some particles of earlier ones: about 120 pairs stay within ulps.)
+  EXPECT_GT(near_threshold, 80) << "the case must test pairs within ulps of touching";
+  EXPECT_GT(across_boundary, 20) << "the case must test contacts across the periodic boundaries";
+}
+
+}  // namespace
+}  // namespace dem
