@@ -13,6 +13,7 @@
 #include "generation/fill.hpp"
 #include "sim/block_times.hpp"
 #include "sim/find_contacts.hpp"
+#include "sim/simd.hpp"
 #include "sim/simulation.hpp"
 
 namespace dem {
@@ -92,14 +93,14 @@ TEST(Determinism, OneTwoAndThreeThreadsGiveTheSameBits) {
   omp_set_num_threads(threads_before);
 }
 
-// The four-wide pass 1 of the force loop (sim/find_contacts.hpp) is speed only: a run with the
-// plain loop ends with the same bits.
-TEST(Determinism, FourWidePassOneGivesThePlainLoopsBits) {
-  if (!simd_pass_available()) GTEST_SKIP() << "no AVX2 on this processor: only the plain loop runs";
+// The force loop's four-wide versions (sim/simd.hpp) are speed only: a run with the plain loops
+// ends with the same bits (here with walls; tests/test_simd_loops.cpp has the rest).
+TEST(Determinism, FourWideLoopsGiveThePlainLoopsBits) {
+  if (!simd_loops_available()) GTEST_SKIP() << "no AVX2 on this processor: only the plain loop runs";
   Simulation a = make_cloud(), b = make_cloud();
-  set_simd_pass(false);
+  set_simd_loops(false);
   for (int s = 0; s < 1500; ++s) a.advance();
-  set_simd_pass(true);
+  set_simd_loops(true);
   for (int s = 0; s < 1500; ++s) b.advance();
   ASSERT_GT(a.pair_contacts().size(), 0u) << "the test must exercise contacts";
   EXPECT_TRUE(same_bits(a.particles.x, b.particles.x));

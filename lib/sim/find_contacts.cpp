@@ -1,25 +1,17 @@
 #include "sim/find_contacts.hpp"
 
 #include <array>
-#include <atomic>
 #include <cstring>
 
-#if defined(__x86_64__)
-#include <immintrin.h>
-#define DEM_HAVE_AVX2_PASS 1
-#endif
+#include "sim/simd.hpp"
 
 namespace dem {
 
 namespace {
 
-std::atomic<bool> simd_on{true};
-
-#ifdef DEM_HAVE_AVX2_PASS
-bool processor_has_avx2() {
-  static const bool has = __builtin_cpu_supports("avx2");
-  return has;
-}
+#ifdef DEM_SIMD_LOOPS
+using simd::gather;
+using simd::times3;
 
 // For each mask of four lanes, the 32-bit lanes that move the set lanes' doubles to the front in
 // order (a compress, which AVX2 lacks): lane q takes double l_q, i.e. 32-bit lanes 2 l_q, 2 l_q + 1.
@@ -45,12 +37,6 @@ constexpr std::array<std::array<int, 8>, 16> compress_ints() {
 alignas(32) constexpr std::array<std::array<int, 8>, 16> kCompressDoubles = compress_doubles();
 alignas(32) constexpr std::array<std::array<int, 8>, 16> kCompressInts = compress_ints();
 
-// base[index] for four 32-bit indices. (The masked form: the plain one starts from an undefined
-// register, which GCC 12 warns may be used uninitialized.)
-[[gnu::target("avx2")]] inline __m256d gather(const double* base, __m128i index) {
-  return _mm256_mask_i32gather_pd(_mm256_setzero_pd(), base, index, _mm256_castsi256_pd(_mm256_set1_epi64x(-1)), 8);
-}
-
 // d - L s with s = +1 where d > L/2, -1 where d < -L/2, else 0: PeriodicBox::nearest's d - L or
 // d + L or d, to the bit (L s is exactly +-L or 0), four lanes at once.
 [[gnu::target("avx2")]] inline __m256d nearest_image(__m256d d, double length) {
@@ -72,7 +58,7 @@ template <bool Periodic, bool Fixed>
   for (; k + 4 <= last; k += 4) {
     const __m128i i = _mm_loadu_si128(reinterpret_cast<const __m128i*>(a.slot_i + k));
     const __m128i j = _mm_loadu_si128(reinterpret_cast<const __m128i*>(a.slot_j + k));
-    const __m128i i3 = _mm_add_epi32(i, _mm_add_epi32(i, i)), j3 = _mm_add_epi32(j, _mm_add_epi32(j, j));
+    const __m128i i3 = times3(i), j3 = times3(j);
     __m256d dx = _mm256_sub_pd(gather(x + 0, j3), gather(x + 0, i3));
     __m256d dy = _mm256_sub_pd(gather(x + 1, j3), gather(x + 1, i3));
     __m256d dz = _mm256_sub_pd(gather(x + 2, j3), gather(x + 2, i3));
@@ -122,19 +108,10 @@ template <bool Periodic, bool Fixed>
 
 }  // namespace
 
-bool simd_pass_available() {
-#ifdef DEM_HAVE_AVX2_PASS
-  return processor_has_avx2();
-#else
-  return false;
-#endif
-}
-void set_simd_pass(bool on) { simd_on.store(on, std::memory_order_relaxed); }
-
 template <bool Periodic, bool Fixed>
 int find_contacts(const CandidateArrays& a, const PeriodicBox& box, long first, long last, const FoundInChunk& found) {
-#ifdef DEM_HAVE_AVX2_PASS
-  if (processor_has_avx2() && simd_on.load(std::memory_order_relaxed)) return find_contacts_avx2<Periodic, Fixed>(a, box, first, last, found);
+#ifdef DEM_SIMD_LOOPS
+  if (simd_loops_on()) return find_contacts_avx2<Periodic, Fixed>(a, box, first, last, found);
 #endif
   return find_contacts_plain<Periodic, Fixed>(a, box, first, last, found, 0);
 }

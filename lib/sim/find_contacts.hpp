@@ -4,8 +4,8 @@
 // law on the contacts found, without an unpredictable branch, on the separations found here.
 //
 // Two versions give the same bits: a plain loop, and one that tests four candidates at once with
-// AVX2 where the processor has it (find_contacts_avx2.cpp: the same operations in the same order
-// per candidate, so the same separations and the same decisions). Pass 1 reads every candidate of
+// AVX2 where the processor has it (sim/simd.hpp: the same operations in the same order per
+// candidate, so the same separations and the same decisions). Pass 1 reads every candidate of
 // the neighbour list, three or more per contact, and was a third of the chute's time.
 #include <cstdint>
 
@@ -45,11 +45,6 @@ struct FoundInChunk {
   double* dy;
   double* dz;
 };
-
-// Whether the four-wide version runs: where the processor has AVX2 (simd_pass_available) and
-// unless turned off (tests turn it off to compare the two versions bit for bit).
-bool simd_pass_available();
-void set_simd_pass(bool on);
 
 // Candidates [first, last): sets active (touching or bonded; with Fixed, never between two held
 // particles, whose bond is dropped too, so that nothing depends on when the list was last rebuilt),

@@ -6,9 +6,12 @@
 #include <atomic>
 #include <cmath>
 #include <thread>
+#include <type_traits>
 
 #include "contact/contact_law.hpp"
 #include "sim/find_contacts.hpp"
+#include "sim/pair_law.hpp"
+#include "sim/simd.hpp"
 #include "sim/simulation.hpp"
 
 namespace dem {
@@ -23,79 +26,55 @@ namespace {
 // Each loop also returns the largest overlap relative to the smaller radius (a stability check).
 constexpr long kChunk = 256;  // candidates per pass-1/pass-2 chunk
 
-// overlap / radius where it may exceed `worst`, else 0: the division (one per contact) is done only
-// near a new largest value. The margin keeps the result exact: whenever the quotient exceeds
-// `worst`, the product test passes despite rounding, so the maximum is the same as dividing always.
-inline double relative_overlap_if_larger(double overlap, double radius, double worst) {
-  return overlap >= worst * radius * (1 - 1e-9) ? overlap / radius : 0.0;
-}
-
 // The candidates [first, last) of one block; contacts whose two slots lie before `reach_end` (in
 // this block or the `reach` after it) are added to both particles' loads. Periodic: distances to
 // the nearest image; Fixed: some particles are held in place. Both are template parameters so
 // that a scene without them pays nothing.
 template <class Normal, bool Periodic, bool Fixed>
 double pair_chunk(const ForceLoopInput& in, ContactList& pc, BlockLoads& out, long first, long last, int reach_end) {
-  // The arrays' addresses and the box in locals (see CandidateArrays).
   const Particles& p = in.particles;
-  const Vec3* const v = p.v.data();
-  const Vec3* const w = p.w.data();
-  const double* const radius = p.radius.data();
-  const double* const mass = p.mass.data();
-  const int* const material = p.material.data();
-  const std::uint8_t* const fixed = p.fixed.data();
-  const int* const slot_i = pc.slot_i.data();
-  const int* const slot_j = pc.slot_j.data();
-  std::uint8_t* const bonded = pc.bonded.data();
-  Vec3* const spring = pc.spring.data();
-  Vec3* const normal = pc.normal.data();
-  ContactSum* const sum = pc.sum.data();
-  Vec3* const force = out.force.data();
-  Vec3* const torque = out.torque.data();
   const PeriodicBox box = in.periodic;
   const MaterialTable& materials = in.materials;
   const double dt = in.dt;
-  double worst = 0;
   // Pass 1 (find_contacts.hpp): which candidates are contacts, and their separations.
   int contact[kChunk + kFoundPadding];
   double dx[kChunk + kFoundPadding], dy[kChunk + kFoundPadding], dz[kChunk + kFoundPadding];
-  const int m = find_contacts<Periodic, Fixed>(CandidateArrays(p, pc), box, first, last, {contact, dx, dy, dz});
+  const FoundInChunk found{contact, dx, dy, dz};
+  const int m = find_contacts<Periodic, Fixed>(CandidateArrays(p, pc), box, first, last, found);
+  // Pass 2 (pair_law.hpp): the law on them.
+  const PairLawArrays a(p, pc, out.force, out.torque);
+  if constexpr (std::is_same_v<Normal, CundallNormal>)
+    if (simd_loops_on()) return cundall_pair_law_simd<Fixed>(a, materials, dt, found, m, reach_end);
   // Pass 2, in three loops over the chunk's contacts: their kinematics, their springs turned into
   // the tangent plane, the law. Each loop is short and its contacts independent, so the processor
   // overlaps the divisions and square roots of several contacts; in one long loop each contact
   // waited for its own (a chain of four).
+  double worst = 0;
   ContactKinematics kin[kChunk];
   for (int e = 0; e < m; ++e) {
     const long k = contact[e];
-    const int i = slot_i[k], j = slot_j[k];
+    const int i = a.slot_i[k], j = a.slot_j[k];
     const Vec3 d(dx[e], dy[e], dz[e]);
     const double dist = d.norm();
     ContactKinematics& c = kin[e];
     c.n = d * (1.0 / dist);
-    c.overlap = radius[i] + radius[j] - dist;  // eq. 2.11
-    c.v_rel = v[j] - v[i];
-    c.w_arm = radius[j] * w[j] + radius[i] * w[i];
-    c.m_eff = effective_mass(mass[i], mass[j], Fixed && fixed[i], Fixed && fixed[j]);
+    c.overlap = a.radius[i] + a.radius[j] - dist;  // eq. 2.11
+    c.v_rel = a.v[j] - a.v[i];
+    c.w_arm = a.radius[j] * a.w[j] + a.radius[i] * a.w[i];
+    c.m_eff = effective_mass(a.mass[i], a.mass[j], Fixed && a.fixed[i], Fixed && a.fixed[j]);
   }
   for (int e = 0; e < m; ++e) {
     const long k = contact[e];
-    spring[k] = ContactLaw<Normal>::in_tangent_plane(spring[k], kin[e].n);
+    a.spring[k] = ContactLaw<Normal>::in_tangent_plane(a.spring[k], kin[e].n);
   }
   for (int e = 0; e < m; ++e) {
     const long k = contact[e];
-    const int i = slot_i[k], j = slot_j[k];
+    const int i = a.slot_i[k], j = a.slot_j[k];
     const ContactKinematics& c = kin[e];
-    const ContactForce f = ContactLaw<Normal>::evaluate_in_plane(materials.pair(material[i], material[j]), c, dt, spring[k], bonded[k]);
-    const Vec3 moment = c.n.cross(f.tangential);
-    normal[k] = c.n;
-    sum[k] = {f.on_i, moment};
-    if (std::max(i, j) < reach_end) {  // the smaller slot is always in this block
-      force[i] += f.on_i;              // eq. 2.31-2.32
-      force[j] -= f.on_i;
-      torque[i] += radius[i] * moment;  // eq. 2.33-2.34: a n x f_t for i and j alike
-      torque[j] += radius[j] * moment;
-    }
-    worst = std::max(worst, relative_overlap_if_larger(c.overlap, std::min(radius[i], radius[j]), worst));
+    const PairParams& params = materials.pair(a.material[i], a.material[j]);
+    const ContactForce f = ContactLaw<Normal>::evaluate_in_plane(params, c, dt, a.spring[k], a.bonded[k]);
+    keep_pair_result(a, k, i, j, c.n, f.on_i, c.n.cross(f.tangential), reach_end);
+    worst = std::max(worst, relative_overlap_if_larger(c.overlap, std::min(a.radius[i], a.radius[j]), worst));
   }
   return worst;
 }

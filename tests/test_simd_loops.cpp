@@ -1,14 +1,19 @@
-// Pass 1 of the force loop (sim/find_contacts.hpp): which candidates are contacts. Its four-wide
-// version must decide exactly as the plain loop and as the definition (|x_j - x_i| < a_i + a_j
-// through the nearest image, or bonded; never two held particles), with the same separations to
-// the bit.
+// The force loop's four-wide versions (sim/simd.hpp) are speed only. Pass 1 (sim/find_contacts.hpp,
+// which candidates are contacts) must decide exactly as the plain loop and as the definition
+// (|x_j - x_i| < a_i + a_j through the nearest image, or bonded; never two held particles), with
+// the same separations to the bit; pass 2 (sim/pair_law.hpp, the Cundall law) must end a run with
+// the plain loops' bits, with everything the law has: two materials, held particles, periodic
+// boundaries, sticking and sliding springs, bonds with cohesion, clipped viscous attraction.
 #include <gtest/gtest.h>
 
 #include <cstring>
 #include <random>
 #include <vector>
 
+#include "generation/fill.hpp"
 #include "sim/find_contacts.hpp"
+#include "sim/simd.hpp"
+#include "sim/simulation.hpp"
 
 namespace dem {
 namespace {
@@ -82,9 +87,9 @@ bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
 
 // Chunks of 1 to 9 candidates and a long one, at odd offsets: the four-wide loop and the plain
 // loop that finishes a chunk's last one to three candidates both run.
-TEST(FindContacts, FourWideAndPlainLoopsDecideAsTheDefinitionWithTheSameBits) {
+TEST(SimdLoops, PassOneDecidesAsTheDefinitionWithThePlainLoopsBits) {
   const Pass1Case c(2000);
-  if (!simd_pass_available()) GTEST_SKIP() << "no AVX2 on this processor: only the plain loop runs";
+  if (!simd_loops_available()) GTEST_SKIP() << "no AVX2 on this processor: only the plain loop runs";
   struct Range {
     long first, last;
   };
@@ -92,9 +97,9 @@ TEST(FindContacts, FourWideAndPlainLoopsDecideAsTheDefinitionWithTheSameBits) {
   for (long n = 1; n <= 9; ++n) ranges.push_back({1700 + 10 * n + n % 3, 1700 + 10 * n + n % 3 + n});
   int near_threshold = 0, across_boundary = 0;
   for (const Range& range : ranges) {
-    set_simd_pass(false);
+    set_simd_loops(false);
     const Pass1Result plain = c.run(range.first, range.last);
-    set_simd_pass(true);
+    set_simd_loops(true);
     const Pass1Result wide = c.run(range.first, range.last);
     const std::string what = "candidates " + std::to_string(range.first) + " to " + std::to_string(range.last);
     ASSERT_EQ(plain.m, wide.m) << what;
@@ -129,6 +134,68 @@ TEST(FindContacts, FourWideAndPlainLoopsDecideAsTheDefinitionWithTheSameBits) {
   // (Later placements move some particles of earlier ones: about 120 pairs stay within ulps.)
   EXPECT_GT(near_threshold, 80) << "the case must test pairs within ulps of touching";
   EXPECT_GT(across_boundary, 20) << "the case must test contacts across the periodic boundaries";
+}
+
+// Spheres of two materials (one clips viscous attraction) with random speeds, grown by 15 % where
+// they were placed apart, so that they press on each other (a dense, jammed packing: 65 % of the
+// volume), in a box periodic along x and y, a floor of them held; after 400 steps every contact present is
+// bonded (cohesion: the Cundall law's bonded failure surface), then 1000 steps more.
+Simulation law_scene() {
+  Simulation sim;
+  Material a, b;
+  a.name = "a", b.name = "b";
+  a.density = b.density = 2500;
+  a.kn = a.kt = 5e4, b.kn = 8e4, b.kt = 6e4;
+  a.friction_angle = 20, b.friction_angle = 35;
+  a.restitution = 0.3, b.restitution = 0.7;
+  a.cohesion = b.cohesion = 0.02;
+  a.no_viscous_attraction = true;
+  sim.materials = MaterialTable({a, b}, {});
+  const double L = 0.02;
+  const Vec3 lo(0, 0, 0), hi(L, L, L);
+  for (bool side : {false, true}) sim.walls.push_back(Wall{"w", 0, box_face(lo, hi, 2, side), {}});
+  PeriodicBox box;
+  box.axis = {true, true, false};
+  box.lo = lo, box.hi = hi;
+  GenerationSpec g;
+  g.box_min = lo;
+  g.box_max = hi;
+  g.count = 300;
+  g.radius_min = 0.0010;
+  g.radius_max = 0.0018;
+  g.material_fractions = {{0, 0.5}, {1, 0.5}};
+  std::mt19937_64 rng(5);
+  fill_random(sim, g, rng);
+  sim.set_periodic(box);
+  std::uniform_real_distribution<double> u(-0.3, 0.3);
+  for (std::size_t k = 0; k < sim.particles.size(); ++k) {
+    sim.particles.radius[k] *= 1.15;
+    sim.particles.mass[k] *= 1.15 * 1.15 * 1.15;
+    sim.particles.v[k] = Vec3(u(rng), u(rng), u(rng));
+    sim.particles.fixed[k] = sim.particles.x[k].z() < 0.25 * L;
+    if (sim.particles.fixed[k]) sim.particles.v[k] = Vec3::Zero();
+  }
+  sim.dt = 0.1 * sim.critical_time_step();
+  return sim;
+}
+
+TEST(SimdLoops, LawEndsARunWithThePlainLoopsBits) {
+  if (!simd_loops_available()) GTEST_SKIP() << "no AVX2 on this processor: only the plain loops run";
+  Simulation plain = law_scene(), wide = law_scene();
+  ASSERT_GT(std::count(plain.particles.fixed.begin(), plain.particles.fixed.end(), 1), 20);
+  for (Simulation* sim : {&plain, &wide}) {
+    set_simd_loops(sim == &wide);
+    for (int s = 0; s < 400; ++s) sim->advance();
+    EXPECT_GT(sim->bond_present_contacts(false), 50u);
+    for (int s = 0; s < 1000; ++s) sim->advance();
+  }
+  set_simd_loops(true);
+  ASSERT_GT(std::count(plain.pair_contacts().bonded.begin(), plain.pair_contacts().bonded.end(), 1), 20);
+  EXPECT_TRUE(same_bits(plain.particles.x, wide.particles.x));
+  EXPECT_TRUE(same_bits(plain.particles.v, wide.particles.v));
+  EXPECT_TRUE(same_bits(plain.particles.w, wide.particles.w));
+  EXPECT_TRUE(same_bits(plain.pair_contacts().spring, wide.pair_contacts().spring));
+  EXPECT_TRUE(same_bits(plain.pair_contacts().bonded, wide.pair_contacts().bonded));
 }
 
 }  // namespace

@@ -1,0 +1,159 @@
+#include "sim/pair_law.hpp"
+
+#include "sim/simd.hpp"
+
+namespace dem {
+
+#ifdef DEM_SIMD_LOOPS
+namespace {
+
+using simd::gather;
+using simd::times3;
+// Four lanes of doubles; GCC's vector arithmetic (+ - * /) works on them lane by lane.
+using V = __m256d;
+struct V3 {
+  V x, y, z;
+};
+
+#define AVX2 [[gnu::target("avx2")]] inline
+AVX2 V3 operator+(const V3& a, const V3& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+AVX2 V3 operator-(const V3& a, const V3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+AVX2 V3 operator*(V s, const V3& a) { return {s * a.x, s * a.y, s * a.z}; }
+AVX2 V3 operator*(const V3& a, V s) { return {a.x * s, a.y * s, a.z * s}; }
+// Eigen's order for 3-vectors: (a0 b0 + a1 b1) + a2 b2, and the cross product's usual terms.
+AVX2 V dot(const V3& a, const V3& b) { return (a.x * b.x + a.y * b.y) + a.z * b.z; }
+AVX2 V3 cross(const V3& a, const V3& b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
+AVX2 V root(V a) { return _mm256_sqrt_pd(a); }
+AVX2 V less(V a, V b) { return _mm256_cmp_pd(a, b, _CMP_LT_OQ); }
+AVX2 V less_or_equal(V a, V b) { return _mm256_cmp_pd(a, b, _CMP_LE_OQ); }
+AVX2 V both(V a, V b) { return _mm256_and_pd(a, b); }
+AVX2 V but_not(V a, V b) { return _mm256_andnot_pd(b, a); }  // a and not b
+// where ? a : b, lane by lane (where: all bits set or none).
+AVX2 V select(V where, V a, V b) { return _mm256_blendv_pd(b, a, where); }
+AVX2 V3 select(V where, const V3& a, const V3& b) { return {select(where, a.x, b.x), select(where, a.y, b.y), select(where, a.z, b.z)}; }
+AVX2 V3 gather3(const Vec3* base, __m128i slot3) {
+  const double* b = base[0].data();
+  return {gather(b, slot3), gather(b + 1, slot3), gather(b + 2, slot3)};
+}
+AVX2 V3 load3(const double* x, const double* y, const double* z) { return {_mm256_loadu_pd(x), _mm256_loadu_pd(y), _mm256_loadu_pd(z)}; }
+// A lane mask from four flags.
+AVX2 V flags(bool a, bool b, bool c, bool d) { return _mm256_castsi256_pd(_mm256_setr_epi64x(-long{a}, -long{b}, -long{c}, -long{d})); }
+// One field of four lanes' pair parameters.
+AVX2 V param(const PairParams* const (&pp)[4], double PairParams::*field) {
+  return _mm256_setr_pd(pp[0]->*field, pp[1]->*field, pp[2]->*field, pp[3]->*field);
+}
+struct Lanes {
+  alignas(32) double l[4];
+};
+AVX2 Lanes lanes(V a) {
+  Lanes out;
+  _mm256_store_pd(out.l, a);
+  return out;
+}
+
+// contact/contact_law.hpp's in_tangent_plane and evaluate_in_plane with CundallNormal (and the
+// kinematics of force_loop.cpp's pass 2), four contacts at a time: each step below is the scalar
+// code's, in its order; branches become selections of both outcomes.
+template <bool Fixed>
+[[gnu::target("avx2")]] double cundall_law_avx2(const PairLawArrays& a, const MaterialTable& materials, double dt,
+                                                const FoundInChunk& found, int m, int reach_end) {
+  // Lanes past the last contact repeat it: computed, never kept.
+  for (int q = m; q < m + 3 && m > 0; ++q)
+    found.contact[q] = found.contact[m - 1], found.dx[q] = found.dx[m - 1], found.dy[q] = found.dy[m - 1], found.dz[q] = found.dz[m - 1];
+  const V zero = _mm256_setzero_pd();
+  const V3 zero3{zero, zero, zero};
+  double worst = 0;
+  for (int e = 0; e < m; e += 4) {
+    const __m128i k = _mm_loadu_si128(reinterpret_cast<const __m128i*>(found.contact + e));
+    const __m128i i = gather(a.slot_i, k), j = gather(a.slot_j, k);
+    alignas(16) int kl[4], il[4], jl[4];
+    _mm_store_si128(reinterpret_cast<__m128i*>(kl), k);
+    _mm_store_si128(reinterpret_cast<__m128i*>(il), i);
+    _mm_store_si128(reinterpret_cast<__m128i*>(jl), j);
+
+    // Kinematics (eq. 2.11-2.12).
+    const V3 d = load3(found.dx + e, found.dy + e, found.dz + e);
+    const V dist = root(dot(d, d));
+    const V3 n = d * (1.0 / dist);
+    const V ri = gather(a.radius, i), rj = gather(a.radius, j);
+    const V overlap = (ri + rj) - dist;
+    const __m128i i3 = times3(i), j3 = times3(j);
+    const V3 v_rel = gather3(a.v, j3) - gather3(a.v, i3);
+    const V3 w_arm = rj * gather3(a.w, j3) + ri * gather3(a.w, i3);
+    const V mi = gather(a.mass, i), mj = gather(a.mass, j);
+    V m_eff = (mi * mj) / (mi + mj);
+    if constexpr (Fixed) {  // effective_mass: against a held particle, the other's mass
+      const std::uint8_t* held = a.fixed;
+      m_eff = select(flags(held[il[0]], held[il[1]], held[il[2]], held[il[3]]), mj,
+                     select(flags(held[jl[0]], held[jl[1]], held[jl[2]], held[jl[3]]), mi, m_eff));
+    }
+
+    // The spring turned into the tangent plane, keeping its magnitude.
+    V3 s = gather3(a.spring, times3(k));
+    const V s2 = dot(s, s);
+    s = s - dot(s, n) * n;
+    const V t2 = dot(s, s);
+    s = select(both(less(zero, s2), less(zero, t2)), s * root(s2 / t2), s);
+
+    // The law: damped linear normal force, tangential spring with Coulomb's (or, bonded,
+    // Mohr-Coulomb's) radial return.
+    const PairParams* pp[4];
+    for (int l = 0; l < 4; ++l) pp[l] = &materials.pair(a.material[il[l]], a.material[jl[l]]);
+    const V kn = param(pp, &PairParams::kn), kt = param(pp, &PairParams::kt), mu = param(pp, &PairParams::mu);
+    const V damping_n = param(pp, &PairParams::damping_n), damping_t = param(pp, &PairParams::damping_t);
+    const V cohesion = param(pp, &PairParams::cohesion);
+    const V no_attraction = flags(pp[0]->no_viscous_attraction, pp[1]->no_viscous_attraction, pp[2]->no_viscous_attraction,
+                                  pp[3]->no_viscous_attraction);
+    const V bonded = flags(a.bonded[kl[0]], a.bonded[kl[1]], a.bonded[kl[2]], a.bonded[kl[3]]);
+    const V vn = dot(v_rel, n);
+    const V f_el = select(less(zero, overlap), kn * overlap, zero);
+    const V sqrt_m = root(m_eff);
+    V fn = f_el - (damping_n * sqrt_m) * vn;
+    fn = select(but_not(less_or_equal(overlap, zero), bonded), zero, fn);
+    fn = select(both(but_not(no_attraction, bonded), less(fn, zero)), zero, fn);
+    const V3 vt = (v_rel - vn * n) - cross(w_arm, n);
+    const V3 trial = s + (kt * dt) * vt;
+    const V cohesive = cohesion + mu * fn;
+    const V tau = select(bonded, select(less(zero, cohesive), cohesive, zero), mu * select(less(fn, zero), zero, fn));
+    const V trial2 = dot(trial, trial);
+    const V stick = less_or_equal(trial2, tau * tau);
+    const V trial_norm = root(trial2);
+    const V3 slid = select(less(zero, trial_norm), trial * (tau / trial_norm), zero3);
+    const V3 spring = select(stick, trial, slid);
+    const V3 ft = select(stick, trial + (damping_t * sqrt_m) * vt, slid);
+    const V3 on_i = (-fn) * n + ft;
+    const V3 moment = cross(n, ft);
+
+    // Kept contact by contact, in order.
+    const Lanes nx = lanes(n.x), ny = lanes(n.y), nz = lanes(n.z), fx = lanes(on_i.x), fy = lanes(on_i.y), fz = lanes(on_i.z);
+    const Lanes mx = lanes(moment.x), my = lanes(moment.y), mz = lanes(moment.z);
+    const Lanes sx = lanes(spring.x), sy = lanes(spring.y), sz = lanes(spring.z), u = lanes(overlap);
+    for (int l = 0; l < 4 && e + l < m; ++l) {
+      a.spring[kl[l]] = Vec3(sx.l[l], sy.l[l], sz.l[l]);
+      keep_pair_result(a, kl[l], il[l], jl[l], Vec3(nx.l[l], ny.l[l], nz.l[l]), Vec3(fx.l[l], fy.l[l], fz.l[l]),
+                       Vec3(mx.l[l], my.l[l], mz.l[l]), reach_end);
+      worst = std::max(worst, relative_overlap_if_larger(u.l[l], std::min(a.radius[il[l]], a.radius[jl[l]]), worst));
+    }
+  }
+  return worst;
+}
+#undef AVX2
+
+}  // namespace
+#endif
+
+template <bool Fixed>
+double cundall_pair_law_simd(const PairLawArrays& a, const MaterialTable& materials, double dt, const FoundInChunk& found, int m,
+                             int reach_end) {
+#ifdef DEM_SIMD_LOOPS
+  return cundall_law_avx2<Fixed>(a, materials, dt, found, m, reach_end);
+#else
+  (void)a, (void)materials, (void)dt, (void)found, (void)m, (void)reach_end;
+  return 0;  // never called: simd_loops_on() is false
+#endif
+}
+
+template double cundall_pair_law_simd<false>(const PairLawArrays&, const MaterialTable&, double, const FoundInChunk&, int, int);
+template double cundall_pair_law_simd<true>(const PairLawArrays&, const MaterialTable&, double, const FoundInChunk&, int, int);
+
+}  // namespace dem

@@ -1,0 +1,71 @@
+#pragma once
+// Pass 2 of the force loop: the law on the contacts pass 1 found (find_contacts.hpp), and what
+// each contact leaves behind: its normal, its sum, and its loads on both particles.
+//
+// The plain version is three loops in force_loop.cpp (any law); the Cundall law (the law of every
+// scene without bonds) also has a four-wide version with AVX2 (sim/simd.hpp), the same
+// operations in the same order per contact as contact/contact_law.hpp, so the same bits.
+#include <algorithm>
+#include <cstdint>
+
+#include "contact/contact_list.hpp"
+#include "core/types.hpp"
+#include "sim/find_contacts.hpp"
+#include "state/materials.hpp"
+#include "state/particles.hpp"
+
+namespace dem {
+
+// What pass 2 reads and writes, as bare arrays (see CandidateArrays).
+struct PairLawArrays {
+  const Vec3* v;
+  const Vec3* w;
+  const double* radius;
+  const double* mass;
+  const int* material;
+  const std::uint8_t* fixed;
+  const int* slot_i;
+  const int* slot_j;
+  std::uint8_t* bonded;
+  Vec3* spring;
+  Vec3* normal;
+  ContactSum* sum;
+  Vec3* force;   // per slot: the loads summed in the force loop (BlockLoads)
+  Vec3* torque;
+
+  PairLawArrays(const Particles& p, ContactList& pc, std::vector<Vec3>& force_, std::vector<Vec3>& torque_)
+      : v(p.v.data()), w(p.w.data()), radius(p.radius.data()), mass(p.mass.data()), material(p.material.data()),
+        fixed(p.fixed.data()), slot_i(pc.slot_i.data()), slot_j(pc.slot_j.data()), bonded(pc.bonded.data()),
+        spring(pc.spring.data()), normal(pc.normal.data()), sum(pc.sum.data()), force(force_.data()), torque(torque_.data()) {}
+};
+
+// What the law of contact k between slots i and j leaves: its normal n, its sum (the force on i
+// and n x f_t) and, when both slots lie before `reach_end` (the smaller always lies in the block
+// being summed), its loads on both particles.
+inline void keep_pair_result(const PairLawArrays& a, long k, int i, int j, const Vec3& n, const Vec3& on_i, const Vec3& moment,
+                             int reach_end) {
+  a.normal[k] = n;
+  a.sum[k] = {on_i, moment};
+  if (std::max(i, j) < reach_end) {
+    a.force[i] += on_i;  // eq. 2.31-2.32
+    a.force[j] -= on_i;
+    a.torque[i] += a.radius[i] * moment;  // eq. 2.33-2.34: a n x f_t for i and j alike
+    a.torque[j] += a.radius[j] * moment;
+  }
+}
+
+// overlap / radius where it may exceed `worst`, else 0: the division (one per contact) is done only
+// near a new largest value. The margin keeps the result exact: whenever the quotient exceeds
+// `worst`, the product test passes despite rounding, so the maximum is the same as dividing always.
+inline double relative_overlap_if_larger(double overlap, double radius, double worst) {
+  return overlap >= worst * radius * (1 - 1e-9) ? overlap / radius : 0.0;
+}
+
+// The Cundall law four contacts at a time on the m contacts `found` (whose arrays hold
+// kFoundPadding entries more), as the plain loops would; returns the largest overlap relative to
+// the smaller radius. Only where simd_loops_on().
+template <bool Fixed>
+double cundall_pair_law_simd(const PairLawArrays& a, const MaterialTable& materials, double dt, const FoundInChunk& found, int m,
+                             int reach_end);
+
+}  // namespace dem
