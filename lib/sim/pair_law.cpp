@@ -42,6 +42,16 @@ AVX2 V flags(bool a, bool b, bool c, bool d) { return _mm256_castsi256_pd(_mm256
 AVX2 V param(const PairParams* const (&pp)[4], double PairParams::*field) {
   return _mm256_setr_pd(pp[0]->*field, pp[1]->*field, pp[2]->*field, pp[3]->*field);
 }
+// What the Cundall law reads of four lanes' pair parameters.
+struct LawParams {
+  V kn, kt, mu, damping_n, damping_t, cohesion, no_attraction;
+  AVX2 explicit LawParams(const PairParams* const (&pp)[4])
+      : kn(param(pp, &PairParams::kn)), kt(param(pp, &PairParams::kt)), mu(param(pp, &PairParams::mu)),
+        damping_n(param(pp, &PairParams::damping_n)), damping_t(param(pp, &PairParams::damping_t)),
+        cohesion(param(pp, &PairParams::cohesion)),
+        no_attraction(flags(pp[0]->no_viscous_attraction, pp[1]->no_viscous_attraction, pp[2]->no_viscous_attraction,
+                            pp[3]->no_viscous_attraction)) {}
+};
 struct Lanes {
   alignas(32) double l[4];
 };
@@ -62,6 +72,9 @@ template <bool Fixed>
     found.contact[q] = found.contact[m - 1], found.dx[q] = found.dx[m - 1], found.dy[q] = found.dy[m - 1], found.dz[q] = found.dz[m - 1];
   const V zero = _mm256_setzero_pd();
   const V3 zero3{zero, zero, zero};
+  // One material: the same parameters for every contact, set once.
+  const PairParams* only[4] = {&materials.pair(0, 0), &materials.pair(0, 0), &materials.pair(0, 0), &materials.pair(0, 0)};
+  LawParams law(only);
   double worst = 0;
   for (int e = 0; e < m; e += 4) {
     const __m128i k = _mm_loadu_si128(reinterpret_cast<const __m128i*>(found.contact + e));
@@ -97,13 +110,12 @@ template <bool Fixed>
 
     // The law: damped linear normal force, tangential spring with Coulomb's (or, bonded,
     // Mohr-Coulomb's) radial return.
-    const PairParams* pp[4];
-    for (int l = 0; l < 4; ++l) pp[l] = &materials.pair(a.material[il[l]], a.material[jl[l]]);
-    const V kn = param(pp, &PairParams::kn), kt = param(pp, &PairParams::kt), mu = param(pp, &PairParams::mu);
-    const V damping_n = param(pp, &PairParams::damping_n), damping_t = param(pp, &PairParams::damping_t);
-    const V cohesion = param(pp, &PairParams::cohesion);
-    const V no_attraction = flags(pp[0]->no_viscous_attraction, pp[1]->no_viscous_attraction, pp[2]->no_viscous_attraction,
-                                  pp[3]->no_viscous_attraction);
+    if (materials.size() > 1) {
+      const PairParams* pp[4];
+      for (int l = 0; l < 4; ++l) pp[l] = &materials.pair(a.material[il[l]], a.material[jl[l]]);
+      law = LawParams(pp);
+    }
+    const auto& [kn, kt, mu, damping_n, damping_t, cohesion, no_attraction] = law;
     const V bonded = flags(a.bonded[kl[0]], a.bonded[kl[1]], a.bonded[kl[2]], a.bonded[kl[3]]);
     const V vn = dot(v_rel, n);
     const V f_el = select(less(zero, overlap), kn * overlap, zero);
