@@ -67,8 +67,9 @@ AVX2 Lanes lanes(V a) {
 template <bool Fixed>
 [[gnu::target("avx2")]] double cundall_law_avx2(const PairLawArrays& a, const MaterialTable& materials, double dt,
                                                 const FoundInChunk& found, int m, int reach_end) {
+  if (m == 0) return 0;
   // Lanes past the last contact repeat it: computed, never kept.
-  for (int q = m; q < m + 3 && m > 0; ++q)
+  for (int q = m; q < m + 3; ++q)
     found.contact[q] = found.contact[m - 1], found.dx[q] = found.dx[m - 1], found.dy[q] = found.dy[m - 1], found.dz[q] = found.dz[m - 1];
   const V zero = _mm256_setzero_pd();
   const V3 zero3{zero, zero, zero};

@@ -1,12 +1,20 @@
 #include "sim/simd.hpp"
 
 #include <atomic>
+#include <cstdlib>
+#include <string_view>
 
 namespace dem {
 
 namespace {
-std::atomic<bool> simd_wanted{true};
+// DEM_SIMD=off in the environment runs the plain loops (the same bits, slower): to compare, or to
+// rule the four-wide loops out when hunting a problem.
+bool wanted_by_environment() {
+  const char* v = std::getenv("DEM_SIMD");
+  return !(v && std::string_view(v) == "off");
 }
+std::atomic<bool> simd_wanted{wanted_by_environment()};
+}  // namespace
 
 bool simd_loops_available() {
 #ifdef DEM_SIMD_LOOPS

@@ -8,7 +8,7 @@ namespace dem {
 
 bool simd_loops_available();  // the processor has AVX2 (always false off x86-64)
 bool simd_loops_on();         // available, and not turned off
-void set_simd_loops(bool on); // on by default; tests turn it off to compare bit for bit
+void set_simd_loops(bool on); // on unless DEM_SIMD=off; tests turn it off to compare bit for bit
 
 }  // namespace dem
 
