@@ -55,7 +55,19 @@ template <bool Periodic, bool Fixed>
   const double* const x = a.x[0].data();
   int m = 0;
   long k = first;
+  // Fetched into the cache ahead: the other particle of the candidates kAhead on. Gathers that
+  // miss the cache stall the loop (the plain loop runs ahead instead); with 10^5 falling spheres
+  // this loop took 50 % longer than the plain one without it, 15 % longer with it. (The first
+  // particle's slots rise along the storage: the processor fetches those ahead by itself.)
+  constexpr long kAhead = 32;
+  const long ahead_end = a.count - kAhead - 4;
   for (; k + 4 <= last; k += 4) {
+    if (k <= ahead_end)
+      for (int l = 0; l < 4; ++l) {
+        const int j = a.slot_j[k + kAhead + l];
+        _mm_prefetch(reinterpret_cast<const char*>(a.x + j), _MM_HINT_T0);
+        _mm_prefetch(reinterpret_cast<const char*>(a.radius + j), _MM_HINT_T0);
+      }
     const __m128i i = _mm_loadu_si128(reinterpret_cast<const __m128i*>(a.slot_i + k));
     const __m128i j = _mm_loadu_si128(reinterpret_cast<const __m128i*>(a.slot_j + k));
     const __m128i i3 = times3(i), j3 = times3(j);
@@ -109,16 +121,16 @@ template <bool Periodic, bool Fixed>
 }  // namespace
 
 template <bool Periodic, bool Fixed>
-int find_contacts(const CandidateArrays& a, const PeriodicBox& box, long first, long last, const FoundInChunk& found) {
+int find_contacts(const CandidateArrays& a, const PeriodicBox& box, long first, long last, const FoundInChunk& found, [[maybe_unused]] bool simd) {
 #ifdef DEM_SIMD_LOOPS
-  if (simd_loops_on()) return find_contacts_avx2<Periodic, Fixed>(a, box, first, last, found);
+  if (simd) return find_contacts_avx2<Periodic, Fixed>(a, box, first, last, found);
 #endif
   return find_contacts_plain<Periodic, Fixed>(a, box, first, last, found, 0);
 }
 
-template int find_contacts<false, false>(const CandidateArrays&, const PeriodicBox&, long, long, const FoundInChunk&);
-template int find_contacts<false, true>(const CandidateArrays&, const PeriodicBox&, long, long, const FoundInChunk&);
-template int find_contacts<true, false>(const CandidateArrays&, const PeriodicBox&, long, long, const FoundInChunk&);
-template int find_contacts<true, true>(const CandidateArrays&, const PeriodicBox&, long, long, const FoundInChunk&);
+template int find_contacts<false, false>(const CandidateArrays&, const PeriodicBox&, long, long, const FoundInChunk&, bool);
+template int find_contacts<false, true>(const CandidateArrays&, const PeriodicBox&, long, long, const FoundInChunk&, bool);
+template int find_contacts<true, false>(const CandidateArrays&, const PeriodicBox&, long, long, const FoundInChunk&, bool);
+template int find_contacts<true, true>(const CandidateArrays&, const PeriodicBox&, long, long, const FoundInChunk&, bool);
 
 }  // namespace dem

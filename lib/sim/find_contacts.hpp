@@ -20,6 +20,7 @@ namespace dem {
 // store may change any memory for the compiler, the vectors' own fields included; reading through
 // the vectors it reloaded every array's address after each such store.
 struct CandidateArrays {
+  long count;  // candidates
   const Vec3* x;
   const double* radius;
   const std::uint8_t* fixed;
@@ -31,7 +32,7 @@ struct CandidateArrays {
   ContactSum* sum;
 
   CandidateArrays(const Particles& p, ContactList& pc)
-      : x(p.x.data()), radius(p.radius.data()), fixed(p.fixed.data()), slot_i(pc.slot_i.data()), slot_j(pc.slot_j.data()),
+      : count(static_cast<long>(pc.size())), x(p.x.data()), radius(p.radius.data()), fixed(p.fixed.data()), slot_i(pc.slot_i.data()), slot_j(pc.slot_j.data()),
         active(pc.active.data()), bonded(pc.bonded.data()), spring(pc.spring.data()), sum(pc.sum.data()) {}
 };
 
@@ -49,9 +50,9 @@ struct FoundInChunk {
 // Candidates [first, last): sets active (touching or bonded; with Fixed, never between two held
 // particles, whose bond is dropped too, so that nothing depends on when the list was last rebuilt),
 // clears the spring and sum of a contact lost, and stores each contact's position and separation
-// in `found` in candidate order. Returns how many.
+// in `found` in candidate order. Returns how many. `simd`: the four-wide version (simd_loops_on()).
 template <bool Periodic, bool Fixed>
-int find_contacts(const CandidateArrays& a, const PeriodicBox& box, long first, long last, const FoundInChunk& found);
+int find_contacts(const CandidateArrays& a, const PeriodicBox& box, long first, long last, const FoundInChunk& found, bool simd);
 
 // The plain loop, from candidate `first` on, appending to `found` from entry m (the four-wide
 // version finishes a chunk's last one to three candidates with it).

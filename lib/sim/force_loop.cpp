@@ -30,21 +30,28 @@ constexpr long kChunk = 256;  // candidates per pass-1/pass-2 chunk
 // this block or the `reach` after it) are added to both particles' loads. Periodic: distances to
 // the nearest image; Fixed: some particles are held in place. Both are template parameters so
 // that a scene without them pays nothing.
+// What every chunk reads, set once per force loop.
+struct ChunkInput {
+  const ForceLoopInput& in;
+  CandidateArrays candidates;
+  PairLawArrays law;
+  bool simd;  // simd_loops_on()
+};
+
 template <class Normal, bool Periodic, bool Fixed>
-double pair_chunk(const ForceLoopInput& in, ContactList& pc, BlockLoads& out, long first, long last, int reach_end) {
-  const Particles& p = in.particles;
-  const PeriodicBox box = in.periodic;
-  const MaterialTable& materials = in.materials;
-  const double dt = in.dt;
+double pair_chunk(const ChunkInput& chunk, long first, long last, int reach_end) {
+  const PeriodicBox& box = chunk.in.periodic;
+  const MaterialTable& materials = chunk.in.materials;
+  const double dt = chunk.in.dt;
+  const PairLawArrays& a = chunk.law;
   // Pass 1 (find_contacts.hpp): which candidates are contacts, and their separations.
   int contact[kChunk + kFoundPadding];
   double dx[kChunk + kFoundPadding], dy[kChunk + kFoundPadding], dz[kChunk + kFoundPadding];
   const FoundInChunk found{contact, dx, dy, dz};
-  const int m = find_contacts<Periodic, Fixed>(CandidateArrays(p, pc), box, first, last, found);
+  const int m = find_contacts<Periodic, Fixed>(chunk.candidates, box, first, last, found, chunk.simd);
   // Pass 2 (pair_law.hpp): the law on them.
-  const PairLawArrays a(p, pc, out.force, out.torque);
   if constexpr (std::is_same_v<Normal, CundallNormal>)
-    if (simd_loops_on()) return cundall_pair_law_simd<Fixed>(a, materials, dt, found, m, reach_end);
+    if (chunk.simd) return cundall_pair_law_simd<Fixed>(a, materials, dt, found, m, reach_end);
   // Pass 2, in three loops over the chunk's contacts: their kinematics, their springs turned into
   // the tangent plane, the law. Each loop is short and its contacts independent, so the processor
   // overlaps the divisions and square roots of several contacts; in one long loop each contact
@@ -98,6 +105,7 @@ double pair_forces(const ForceLoopInput& in, ContactList& pc, BlockLoads& out) {
   const long phases = out.reach + 1;
   out.times.fit(blocks, [&](long b) { return out.first[b + 1] - out.first[b] + 1; });  // candidates, until timed
   out.done.resize(blocks);
+  const ChunkInput chunk{in, CandidateArrays(in.particles, pc), PairLawArrays(in.particles, pc, out.force, out.torque), simd_loops_on()};
   double worst = 0;
 #pragma omp parallel reduction(max : worst)
   {
@@ -131,7 +139,7 @@ double pair_forces(const ForceLoopInput& in, ContactList& pc, BlockLoads& out) {
           for (long s = b * out.block; s < reach_end; ++s) out.force[s] = out.torque[s] = Vec3::Zero();
         for (long first = out.first[b]; first < out.first[b + 1]; first += kChunk) {
           const long last = std::min(out.first[b + 1], first + kChunk);
-          worst = std::max(worst, pair_chunk<Normal, Periodic, Fixed>(in, pc, out, first, last, reach_end));
+          worst = std::max(worst, pair_chunk<Normal, Periodic, Fixed>(chunk, first, last, reach_end));
         }
         std::atomic_ref<long>(out.done[b]).store(tick, std::memory_order_release);
         out.times.record(b, omp_get_wtime() - tb);
