@@ -5,16 +5,16 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <cstring>
 #include <numeric>
 #include <random>
 #include <string>
 
 #include "generation/fill.hpp"
 #include "sim/block_times.hpp"
-#include "sim/find_contacts.hpp"
 #include "sim/simd.hpp"
 #include "sim/simulation.hpp"
+
+#include "same_bits.hpp"
 
 namespace dem {
 namespace {
@@ -46,12 +46,6 @@ Simulation make_cloud() {
   for (Vec3& v : sim.particles.v) v = Vec3(u(rng), u(rng), u(rng));
   sim.dt = 0.1 * sim.critical_time_step();
   return sim;
-}
-
-template <class T>
-bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
-  // memcmp must not see the null data() of empty vectors (UBSan), even for a length of 0.
-  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
 }
 
 // Also with small load blocks (SimParams::load_block, load_reach), so that many contacts lie

@@ -6,14 +6,18 @@
 // boundaries, sticking and sliding springs, bonds with cohesion, clipped viscous attraction.
 #include <gtest/gtest.h>
 
-#include <cstring>
+#include <algorithm>
+#include <cmath>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "generation/fill.hpp"
 #include "sim/find_contacts.hpp"
 #include "sim/simd.hpp"
 #include "sim/simulation.hpp"
+
+#include "same_bits.hpp"
 
 namespace dem {
 namespace {
@@ -80,11 +84,6 @@ struct Pass1Case {
     return r;
   }
 };
-
-template <class T>
-bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
-  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
-}
 
 // Chunks of 1 to 9 candidates and a long one, at odd offsets: the four-wide loop and the plain
 // loop that finishes a chunk's last one to three candidates both run.

@@ -50,8 +50,8 @@ alignas(32) constexpr std::array<std::array<int, 8>, 16> kCompressInts = compres
 // and the touch test in the plain loop's order of operations ((dx^2 + dy^2) + dz^2 < r^2), the
 // contacts moved to the front of the lanes and stored; the last one to three by the plain loop.
 template <bool Periodic, bool Fixed>
-[[gnu::target("avx2")]] int find_contacts_avx2(const CandidateArrays& a, const PeriodicBox& box, long first, long last,
-                                               const FoundInChunk& found) {
+[[gnu::target("avx2")]] int find_contacts_avx2(const CandidateArrays a, const PeriodicBox& box, long first, long last,
+                                               const FoundInChunk found) {
   const double* const x = a.x[0].data();
   int m = 0;
   long k = first;
@@ -121,16 +121,17 @@ template <bool Periodic, bool Fixed>
 }  // namespace
 
 template <bool Periodic, bool Fixed>
-int find_contacts(const CandidateArrays& a, const PeriodicBox& box, long first, long last, const FoundInChunk& found, [[maybe_unused]] bool simd) {
+int find_contacts(const CandidateArrays a, const PeriodicBox& box, long first, long last, const FoundInChunk found,
+                  [[maybe_unused]] bool simd) {
 #ifdef DEM_SIMD_LOOPS
   if (simd) return find_contacts_avx2<Periodic, Fixed>(a, box, first, last, found);
 #endif
   return find_contacts_plain<Periodic, Fixed>(a, box, first, last, found, 0);
 }
 
-template int find_contacts<false, false>(const CandidateArrays&, const PeriodicBox&, long, long, const FoundInChunk&, bool);
-template int find_contacts<false, true>(const CandidateArrays&, const PeriodicBox&, long, long, const FoundInChunk&, bool);
-template int find_contacts<true, false>(const CandidateArrays&, const PeriodicBox&, long, long, const FoundInChunk&, bool);
-template int find_contacts<true, true>(const CandidateArrays&, const PeriodicBox&, long, long, const FoundInChunk&, bool);
+template int find_contacts<false, false>(CandidateArrays, const PeriodicBox&, long, long, FoundInChunk, bool);
+template int find_contacts<false, true>(CandidateArrays, const PeriodicBox&, long, long, FoundInChunk, bool);
+template int find_contacts<true, false>(CandidateArrays, const PeriodicBox&, long, long, FoundInChunk, bool);
+template int find_contacts<true, true>(CandidateArrays, const PeriodicBox&, long, long, FoundInChunk, bool);
 
 }  // namespace dem

@@ -51,8 +51,10 @@ struct FoundInChunk {
 // particles, whose bond is dropped too, so that nothing depends on when the list was last rebuilt),
 // clears the spring and sum of a contact lost, and stores each contact's position and separation
 // in `found` in candidate order. Returns how many. `simd`: the four-wide version (simd_loops_on()).
+// The arrays are taken by value: a copy that the loop's stores cannot change, so their addresses
+// stay in registers.
 template <bool Periodic, bool Fixed>
-int find_contacts(const CandidateArrays& a, const PeriodicBox& box, long first, long last, const FoundInChunk& found, bool simd);
+int find_contacts(CandidateArrays a, const PeriodicBox& box, long first, long last, FoundInChunk found, bool simd);
 
 // The plain loop, from candidate `first` on, appending to `found` from entry m (the four-wide
 // version finishes a chunk's last one to three candidates with it).

@@ -65,8 +65,8 @@ AVX2 Lanes lanes(V a) {
 // kinematics of force_loop.cpp's pass 2), four contacts at a time: each step below is the scalar
 // code's, in its order; branches become selections of both outcomes.
 template <bool Fixed>
-[[gnu::target("avx2")]] double cundall_law_avx2(const PairLawArrays& a, const MaterialTable& materials, double dt,
-                                                const FoundInChunk& found, int m, int reach_end) {
+[[gnu::target("avx2")]] double cundall_law_avx2(const PairLawArrays a, const MaterialTable& materials, double dt,
+                                                const FoundInChunk found, int m, int reach_end) {
   if (m == 0) return 0;
   // Lanes past the last contact repeat it: computed, never kept.
   for (int q = m; q < m + 3; ++q)
@@ -156,7 +156,7 @@ template <bool Fixed>
 #endif
 
 template <bool Fixed>
-double cundall_pair_law_simd(const PairLawArrays& a, const MaterialTable& materials, double dt, const FoundInChunk& found, int m,
+double cundall_pair_law_simd(const PairLawArrays a, const MaterialTable& materials, double dt, const FoundInChunk found, int m,
                              int reach_end) {
 #ifdef DEM_SIMD_LOOPS
   return cundall_law_avx2<Fixed>(a, materials, dt, found, m, reach_end);
@@ -166,7 +166,7 @@ double cundall_pair_law_simd(const PairLawArrays& a, const MaterialTable& materi
 #endif
 }
 
-template double cundall_pair_law_simd<false>(const PairLawArrays&, const MaterialTable&, double, const FoundInChunk&, int, int);
-template double cundall_pair_law_simd<true>(const PairLawArrays&, const MaterialTable&, double, const FoundInChunk&, int, int);
+template double cundall_pair_law_simd<false>(PairLawArrays, const MaterialTable&, double, FoundInChunk, int, int);
+template double cundall_pair_law_simd<true>(PairLawArrays, const MaterialTable&, double, FoundInChunk, int, int);
 
 }  // namespace dem

@@ -63,9 +63,8 @@ inline double relative_overlap_if_larger(double overlap, double radius, double w
 
 // The Cundall law four contacts at a time on the m contacts `found` (whose arrays hold
 // kFoundPadding entries more), as the plain loops would; returns the largest overlap relative to
-// the smaller radius. Only where simd_loops_on().
+// the smaller radius. Only where simd_loops_on(). (Arrays by value, as find_contacts.)
 template <bool Fixed>
-double cundall_pair_law_simd(const PairLawArrays& a, const MaterialTable& materials, double dt, const FoundInChunk& found, int m,
-                             int reach_end);
+double cundall_pair_law_simd(PairLawArrays a, const MaterialTable& materials, double dt, FoundInChunk found, int m, int reach_end);
 
 }  // namespace dem
