@@ -1,6 +1,6 @@
 #pragma once
 // Pass 1 of the force loop: which pair candidates of a chunk are contacts (touching, or held by a
-// bond). The others get no force and lose their history. Pass 2 (force_loop.cpp) then runs the
+// bond). The others get no force and lose their history. Pass 2 (pair_law.hpp) then runs the
 // law on the contacts found, without an unpredictable branch, on the separations found here.
 //
 // Two versions give the same bits: a plain loop, and one that tests four candidates at once with
@@ -32,8 +32,9 @@ struct CandidateArrays {
   ContactSum* sum;
 
   CandidateArrays(const Particles& p, ContactList& pc)
-      : count(static_cast<long>(pc.size())), x(p.x.data()), radius(p.radius.data()), fixed(p.fixed.data()), slot_i(pc.slot_i.data()), slot_j(pc.slot_j.data()),
-        active(pc.active.data()), bonded(pc.bonded.data()), spring(pc.spring.data()), sum(pc.sum.data()) {}
+      : count(static_cast<long>(pc.size())), x(p.x.data()), radius(p.radius.data()), fixed(p.fixed.data()),
+        slot_i(pc.slot_i.data()), slot_j(pc.slot_j.data()), active(pc.active.data()), bonded(pc.bonded.data()),
+        spring(pc.spring.data()), sum(pc.sum.data()) {}
 };
 
 // The contacts found in a chunk: candidate positions and separations x_j - x_i (nearest image),
