@@ -11,6 +11,7 @@
 
 #include "contact/contact_list.hpp"
 #include "core/types.hpp"
+#include "sim/force_loop.hpp"
 #include "state/particles.hpp"
 #include "state/periodic.hpp"
 
@@ -65,11 +66,9 @@ inline int find_contacts_plain(const CandidateArrays& a, const PeriodicBox& box,
   for (long k = first; k < last; ++k) {
     const int i = a.slot_i[k], j = a.slot_j[k];
     const std::uint8_t was = a.active[k];
-    Vec3 d = a.x[j] - a.x[i];
-    if constexpr (Periodic) d = box.nearest(d);
-    const double r = a.radius[i] + a.radius[j];
+    const Vec3 d = separation<Periodic>(box, a.x[i], a.x[j]);
     // Bitwise, not ||: whether a candidate touches is a coin toss to the branch predictor.
-    std::uint8_t now = static_cast<std::uint8_t>(d.squaredNorm() < r * r) | a.bonded[k];
+    std::uint8_t now = static_cast<std::uint8_t>(spheres_touch(d, a.radius[i], a.radius[j])) | a.bonded[k];
     if constexpr (Fixed) {
       const std::uint8_t free = !both_held(a.fixed[i], a.fixed[j]);
       now &= free;
