@@ -88,7 +88,8 @@ TEST(Determinism, OneTwoAndThreeThreadsGiveTheSameBits) {
 }
 
 // The force loop's four-wide versions (sim/simd.hpp) are speed only: a run with the plain loops
-// ends with the same bits (here with walls; tests/test_simd_loops.cpp has the rest).
+// ends with the same bits (here with walls, a sparse cloud: pass 1; the four-wide law runs on
+// chunks of 16 contacts or more, tests/test_simd_loops.cpp).
 TEST(Determinism, FourWideLoopsGiveThePlainLoopsBits) {
   if (!simd_loops_available()) GTEST_SKIP() << "no AVX2 on this processor: only the plain loop runs";
   Simulation a = make_cloud(), b = make_cloud();
