@@ -42,10 +42,29 @@ TEST_P(SearchMatchesBruteForce, PolydisperseRandomCloud) {
   // A far-away particle stretches the bounding box (tests the grid-size cap).
   p.add(5, Vec3(50, -20, 3), 0.01, 1000, 0);
   std::vector<FoundContact> fast;
+  std::vector<int> groups;
   LinkedCells cells;
-  cells.find_near_pairs(p, fast);
+  cells.find_near_pairs(p, PeriodicBox{}, fast, groups);
   for (const FoundContact& c : fast) EXPECT_LT(c.key_i, c.key_j);
-  std::sort(fast.begin(), fast.end());
+  // Found grouped by the smaller slot, in key order within a group, as place_by_storage would put
+  // them; groups[s] is where slot s's group starts.
+  ASSERT_EQ(groups.size(), p.size() + 1);
+  EXPECT_EQ(groups.back(), static_cast<int>(fast.size()));
+  for (std::size_t s = 0; s < p.size(); ++s)
+    for (int k = groups[s]; k < groups[s + 1]; ++k) {
+      EXPECT_EQ(std::min(fast[k].slot_i, fast[k].slot_j), static_cast<int>(s));
+      if (k > groups[s]) EXPECT_LT(fast[k - 1], fast[k]);
+    }
+  std::vector<FoundContact> by_key = fast;
+  std::sort(by_key.begin(), by_key.end());
+  std::vector<int> count;
+  KeyOrder place;
+  place_by_storage(by_key, p.size(), count, place);
+  for (std::size_t r = 0; r < by_key.size(); ++r) {
+    EXPECT_EQ(fast[place[r]].key_i, by_key[r].key_i);
+    EXPECT_EQ(fast[place[r]].key_j, by_key[r].key_j);
+  }
+  fast = by_key;
   const std::vector<FoundContact> slow = brute_force(p);
   ASSERT_GT(slow.size(), 100u);
   ASSERT_EQ(fast.size(), slow.size());
@@ -252,6 +271,39 @@ TEST(ContactList, HistoryFollowsKeysWhereverStored) {
   active_contacts(list, by_key, view);  // the contacts of the last step, in key order
   EXPECT_EQ(view.key_i, (std::vector<Index>{1, 2}));
   EXPECT_EQ(view.key_j, (std::vector<Index>{5, 3}));
+  KeyOrder sorted;
+  sort_by_key(list, sorted);
+  EXPECT_EQ(sorted, by_key);
+
+  // The same rebuild carried group by group (no sort), from the list as the first build left it:
+  // the search gives the candidates grouped by the smaller slot (slot 0: (1,5); slot 2: (1,3),
+  // (2,3)), and the slots still hold the same ids (slot 1 holds a particle without candidates).
+  ContactList grouped;
+  KeyOrder grouped_by_key;
+  place_by_storage(first, 5, count, place);
+  carry_history(grouped, grouped_by_key, first, place, from);
+  for (std::size_t k = 0; k < grouped.size(); ++k) grouped.spring[k] = Vec3(grouped.key_j[k], 0, 0), grouped.active[k] = 1;
+  grouped.bonded[0] = 1;
+  const std::vector<FoundContact> second_grouped = {{1, 5, 4, 0}, {1, 3, 4, 2}, {2, 3, 3, 2}};
+  const std::vector<int> groups = {0, 1, 1, 3, 3, 3};
+  const std::vector<Index> id_of_slot = {5, 9, 3, 2, 1};
+  // Slots that no longer hold their keys' particles (re-sorted storage) are refused, untouched.
+  const ContactList before = grouped;
+  EXPECT_FALSE(carry_history_in_groups(grouped, second_grouped, groups, {5, 9, 3, 1, 2}, from));
+  EXPECT_EQ(grouped.key_j, before.key_j);
+  EXPECT_EQ(grouped.spring, before.spring);
+  ASSERT_TRUE(carry_history_in_groups(grouped, second_grouped, groups, id_of_slot, from));
+  EXPECT_EQ(grouped.key_i, list.key_i);
+  EXPECT_EQ(grouped.key_j, list.key_j);
+  EXPECT_EQ(grouped.slot_i, list.slot_i);
+  EXPECT_EQ(grouped.slot_j, list.slot_j);
+  EXPECT_EQ(grouped.spring, list.spring);
+  EXPECT_EQ(grouped.bonded, list.bonded);
+  EXPECT_EQ(grouped.active, list.active);
+  // And again from a list stored grouped: the carry needs no key order.
+  for (std::size_t k = 0; k < grouped.size(); ++k) grouped.spring[k] = Vec3(0, grouped.key_i[k], grouped.key_j[k]);
+  ASSERT_TRUE(carry_history_in_groups(grouped, second_grouped, groups, id_of_slot, from));
+  EXPECT_EQ(grouped.spring, (std::vector<Vec3>{Vec3(0, 1, 5), Vec3(0, 1, 3), Vec3(0, 2, 3)}));
 }
 
 }  // namespace

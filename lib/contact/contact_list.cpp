@@ -1,6 +1,7 @@
 #include "contact/contact_list.hpp"
 
 #include <algorithm>
+#include <parallel/algorithm>
 #include <utility>
 
 namespace dem {
@@ -73,8 +74,37 @@ namespace {
 template <class T>
 void carry_field(std::vector<T>& field, const std::vector<int>& from, const KeyOrder& place, const T& zero) {
   std::vector<T> next(from.size());
-  for (std::size_t r = 0; r < from.size(); ++r) next[key_rank_to_position(place, r)] = from[r] >= 0 ? field[from[r]] : zero;
+  const long n = static_cast<long>(from.size());
+#pragma omp parallel for schedule(static)
+  for (long r = 0; r < n; ++r) next[key_rank_to_position(place, r)] = from[r] >= 0 ? field[from[r]] : zero;
   field.swap(next);
+}
+
+// `list` becomes `found`, the r-th stored at place[r], each with the history of entry from[r] of
+// `list` (-1: none).
+void take_found(ContactList& list, const std::vector<FoundContact>& found, const KeyOrder& place, const std::vector<int>& from) {
+  carry_field(list.spring, from, place, Vec3(Vec3::Zero()));
+  carry_field(list.bonded, from, place, std::uint8_t{0});
+  // Whether it was a contact at the last step: the wall loop hands a lost contact's spring to a
+  // new one of the same particle (a sphere rolling from one mesh element onto the next).
+  carry_field(list.active, from, place, std::uint8_t{0});
+  // The rest belongs to the new candidates: keys and slots from the search; the force loop writes
+  // every normal and sum before anything reads them.
+  list.resize(found.size());
+  const long n = static_cast<long>(found.size());
+#pragma omp parallel for schedule(static)
+  for (long r = 0; r < n; ++r) {
+    const std::size_t k = key_rank_to_position(place, r);
+    list.key_i[k] = found[r].key_i;
+    list.key_j[k] = found[r].key_j;
+    list.slot_i[k] = found[r].slot_i;
+    list.slot_j[k] = found[r].slot_j;
+    list.sum[k] = ContactSum();
+  }
+}
+
+bool key_less(const ContactList& list, std::size_t a, const FoundContact& f) {
+  return list.key_i[a] < f.key_i || (list.key_i[a] == f.key_i && list.key_j[a] < f.key_j);
 }
 
 }  // namespace
@@ -90,29 +120,59 @@ void carry_history(ContactList& list, KeyOrder& by_key, const std::vector<FoundC
     from[r] = -1;
     for (; r_old < list.size(); ++r_old) {
       const int at = key_rank_to_position(by_key, r_old);
-      if (list.key_i[at] > f.key_i || (list.key_i[at] == f.key_i && list.key_j[at] >= f.key_j)) {
+      if (!key_less(list, at, f)) {
         if (list.key_i[at] == f.key_i && list.key_j[at] == f.key_j) from[r] = at;
         break;
       }
     }
   }
-  carry_field(list.spring, from, place, Vec3(Vec3::Zero()));
-  carry_field(list.bonded, from, place, std::uint8_t{0});
-  // Whether it was a contact at the last step: the wall loop hands a lost contact's spring to a
-  // new one of the same particle (a sphere rolling from one mesh element onto the next).
-  carry_field(list.active, from, place, std::uint8_t{0});
-  // The rest belongs to the new candidates: keys and slots from the search; the force loop writes
-  // every normal and sum before anything reads them.
-  list.resize(found.size());
-  for (std::size_t r = 0; r < found.size(); ++r) {
-    const std::size_t k = key_rank_to_position(place, r);
-    list.key_i[k] = found[r].key_i;
-    list.key_j[k] = found[r].key_j;
-    list.slot_i[k] = found[r].slot_i;
-    list.slot_j[k] = found[r].slot_j;
-    list.sum[k] = ContactSum();
-  }
+  take_found(list, found, place, from);
   by_key.swap(place);
+}
+
+bool carry_history_in_groups(ContactList& list, const std::vector<FoundContact>& found, const std::vector<int>& groups,
+                             const std::vector<Index>& id_of_slot, std::vector<int>& from) {
+  const long old_n = static_cast<long>(list.size());
+  const long slots = static_cast<long>(groups.size()) - 1;
+  auto lower = [&](long k) { return std::min(list.slot_i[k], list.slot_j[k]); };
+  // The old entries' slots hold the particles of their keys, and the groups rise along the list.
+  int fits = 1;
+#pragma omp parallel for schedule(static) reduction(min : fits)
+  for (long k = 0; k < old_n; ++k) {
+    const int i = list.slot_i[k], j = list.slot_j[k];
+    const bool ok = i >= 0 && j >= 0 && i < slots && j < slots && id_of_slot[i] == list.key_i[k] &&
+                    id_of_slot[j] == list.key_j[k] && (k == 0 || lower(k - 1) <= lower(k));
+    fits = std::min(fits, static_cast<int>(ok));
+  }
+  if (!fits) return false;
+  // Where each slot's old group starts: the slots after the last entry's group and up to this
+  // entry's start here.
+  std::vector<int> old_start(slots + 1);
+#pragma omp parallel for schedule(static)
+  for (long k = 0; k <= old_n; ++k) {
+    const long first = k == 0 ? 0 : lower(k - 1) + 1, last = k == old_n ? slots : lower(k);
+    for (long s = first; s <= last; ++s) old_start[s] = static_cast<int>(k);
+  }
+  from.resize(found.size());
+#pragma omp parallel for schedule(static, 256)
+  for (long s = 0; s < slots; ++s) {
+    int o = old_start[s];
+    for (int q = groups[s]; q < groups[s + 1]; ++q) {
+      const FoundContact& f = found[q];
+      while (o < old_start[s + 1] && key_less(list, o, f)) ++o;
+      from[q] = o < old_start[s + 1] && list.key_i[o] == f.key_i && list.key_j[o] == f.key_j ? o : -1;
+    }
+  }
+  take_found(list, found, {}, from);
+  return true;
+}
+
+void sort_by_key(const ContactList& list, KeyOrder& by_key) {
+  by_key.resize(list.size());
+  for (std::size_t k = 0; k < list.size(); ++k) by_key[k] = static_cast<int>(k);
+  __gnu_parallel::sort(by_key.begin(), by_key.end(), [&](int a, int b) {
+    return list.key_i[a] != list.key_i[b] ? list.key_i[a] < list.key_i[b] : list.key_j[a] < list.key_j[b];
+  });
 }
 
 std::size_t active_count(const ContactList& list) {

@@ -71,6 +71,19 @@ void place_by_storage(const std::vector<FoundContact>& found, std::size_t partic
 void carry_history(ContactList& list, KeyOrder& by_key, const std::vector<FoundContact>& found, KeyOrder& place,
                    std::vector<int>& from);
 
+// carry_history without sorting anything, for a list whose slots still hold the same particles
+// (`id_of_slot`: the particles' ids by slot) and which is stored as place_by_storage puts it, as is
+// `found` (LinkedCells::find_near_pairs), `groups` telling where each slot's group starts (+ the
+// end): each slot's old and new groups are merged by key, slot by slot in parallel, and `list`
+// ends up holding `found` in its order, each with its history. Returns false, with `list`
+// untouched, where the slots no longer fit (the storage was re-sorted, particles were added or
+// removed, the list was read from a checkpoint): carry by key then. `from` is working storage.
+bool carry_history_in_groups(ContactList& list, const std::vector<FoundContact>& found, const std::vector<int>& groups,
+                             const std::vector<Index>& id_of_slot, std::vector<int>& from);
+
+// Where `list` holds its entries in key order (a KeyOrder for it), by sorting.
+void sort_by_key(const ContactList& list, KeyOrder& by_key);
+
 // The position of the r-th entry in key order.
 inline int key_rank_to_position(const KeyOrder& by_key, std::size_t r) {
   return by_key.empty() ? static_cast<int>(r) : by_key[r];

@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <sstream>
 
@@ -11,15 +12,17 @@
 namespace dem {
 
 namespace {
-// Appends each thread's list to `out`, in thread order, and frees them: kept, they would double
-// the memory of the found pairs at every rebuild.
+// Appends the parts to `out`, in order, and frees them: kept, they would double the memory of the
+// found pairs at every rebuild.
 void join_and_release(std::vector<std::vector<FoundContact>>& parts, std::vector<FoundContact>& out) {
-  std::size_t n = out.size();
-  for (const std::vector<FoundContact>& part : parts) n += part.size();
-  out.reserve(n);
-  for (std::vector<FoundContact>& part : parts) {
-    out.insert(out.end(), part.begin(), part.end());
-    std::vector<FoundContact>().swap(part);
+  const long count = static_cast<long>(parts.size());
+  std::vector<std::size_t> at(count + 1, out.size());
+  for (long c = 0; c < count; ++c) at[c + 1] = at[c] + parts[c].size();
+  out.resize(at[count]);
+#pragma omp parallel for schedule(static)
+  for (long c = 0; c < count; ++c) {
+    std::copy(parts[c].begin(), parts[c].end(), out.begin() + at[c]);
+    std::vector<FoundContact>().swap(parts[c]);
   }
 }
 }  // namespace
@@ -66,17 +69,22 @@ void LinkedCells::bin(const Particles& p, const PeriodicBox& box, double margin)
       throw InputError(m.str());
     }
   rmax_ = rmax;
-  head_.assign(dims[0] * dims[1] * dims[2], -1);
-  next_.resize(n);
-  // Insert in reverse so each cell lists its particles in increasing slot order.
-  for (int k = n - 1; k >= 0; --k) {
-    const long c = (cell_coord(p.x[k][2], 2) * dims[1] + cell_coord(p.x[k][1], 1)) * dims[0] + cell_coord(p.x[k][0], 0);
-    next_[k] = head_[c];
-    head_[c] = k;
-  }
+  // Each cell's slots as one run (a counting sort by cell, stable: slot order within a cell).
+  const long ncell = dims[0] * dims[1] * dims[2];
+  cell_of_.resize(n);
+#pragma omp parallel for schedule(static)
+  for (int k = 0; k < n; ++k)
+    cell_of_[k] = static_cast<int>((cell_coord(p.x[k][2], 2) * dims[1] + cell_coord(p.x[k][1], 1)) * dims[0] + cell_coord(p.x[k][0], 0));
+  cell_first_.assign(ncell + 1, 0);
+  for (int k = 0; k < n; ++k) ++cell_first_[cell_of_[k] + 1];
+  for (long c = 0; c < ncell; ++c) cell_first_[c + 1] += cell_first_[c];
+  cell_slots_.resize(n);
+  std::vector<int> fill(cell_first_.begin(), cell_first_.end() - 1);
+  for (int k = 0; k < n; ++k) cell_slots_[fill[cell_of_[k]]++] = k;
 }
 
-void LinkedCells::find_near_pairs(const Particles& p, const PeriodicBox& box, std::vector<FoundContact>& out, double margin) {
+void LinkedCells::find_near_pairs(const Particles& p, const PeriodicBox& box, std::vector<FoundContact>& out, std::vector<int>& group_start,
+                                  double margin) {
   bin(p, box, margin);
   const long* dims = dims_;
   const long ncell = dims[0] * dims[1] * dims[2];
@@ -86,13 +94,12 @@ void LinkedCells::find_near_pairs(const Particles& p, const PeriodicBox& box, st
   static constexpr int kHalf[13][3] = {{1, 0, 0},  {-1, 1, 0}, {0, 1, 0},  {1, 1, 0},   {-1, -1, 1},
                                        {0, -1, 1}, {1, -1, 1}, {-1, 0, 1}, {0, 0, 1},   {1, 0, 1},
                                        {-1, 1, 1}, {0, 1, 1},  {1, 1, 1}};
-  // Cells are searched in parallel, each thread appending to its own list; the lists are joined
-  // in thread order (callers that need an order independent of the thread count sort them).
+  // Cells are searched in parallel, each thread into its own part.
   const int threads = omp_get_max_threads();
-  per_thread_.resize(threads);
+  parts_.resize(threads);
 #pragma omp parallel num_threads(threads)
   {
-    std::vector<FoundContact>& mine = per_thread_[omp_get_thread_num()];
+    std::vector<FoundContact>& mine = parts_[omp_get_thread_num()];
     mine.clear();
     auto test = [&](int a, int b) {
       if (p.both_fixed(a, b)) return;
@@ -110,30 +117,51 @@ void LinkedCells::find_near_pairs(const Particles& p, const PeriodicBox& box, st
     };
 #pragma omp for schedule(dynamic, 64)
     for (long c = 0; c < ncell; ++c) {
+      const int first = cell_first_[c], last = cell_first_[c + 1];
+      if (first == last) continue;
+      for (int m = first; m < last; ++m)
+        for (int o = m + 1; o < last; ++o) test(cell_slots_[m], cell_slots_[o]);
       const long cx = c % dims[0], cy = (c / dims[0]) % dims[1], cz = c / (dims[0] * dims[1]);
-      for (int a = head_[c]; a >= 0; a = next_[a]) {
-        for (int b = next_[a]; b >= 0; b = next_[b]) test(a, b);
-        for (const auto& o : kHalf) {
-          const long x = along(cx + o[0], 0), y = along(cy + o[1], 1), z = along(cz + o[2], 2);
-          if (x < 0 || y < 0 || z < 0) continue;
-          for (int b = head_[(z * dims[1] + y) * dims[0] + x]; b >= 0; b = next_[b]) test(a, b);
-        }
+      for (const auto& h : kHalf) {
+        const long x = along(cx + h[0], 0), y = along(cy + h[1], 1), z = along(cz + h[2], 2);
+        if (x < 0 || y < 0 || z < 0) continue;
+        const long cell = (z * dims[1] + y) * dims[0] + x;
+        for (int m = first; m < last; ++m)
+          for (int o = cell_first_[cell]; o < cell_first_[cell + 1]; ++o) test(cell_slots_[m], cell_slots_[o]);
       }
     }
   }
-  join_and_release(per_thread_, out);
+  // Grouped by the smaller slot (a counting sort, the parts' entries placed in parallel: in any
+  // order within a group), then each group put in key order: an order that depends on neither the
+  // threads nor the cells.
+  const long n = static_cast<long>(p.size());
+  group_start.assign(n + 1, 0);
+  auto lower = [](const FoundContact& f) { return std::min(f.slot_i, f.slot_j); };
+#pragma omp parallel for schedule(static, 1)
+  for (int t = 0; t < threads; ++t)
+    for (const FoundContact& f : parts_[t]) std::atomic_ref<int>(group_start[lower(f) + 1]).fetch_add(1, std::memory_order_relaxed);
+  for (long s = 0; s < n; ++s) group_start[s + 1] += group_start[s];
+  out.resize(group_start[n]);
+  std::vector<int> fill(group_start.begin(), group_start.end() - 1);
+#pragma omp parallel for schedule(static, 1)
+  for (int t = 0; t < threads; ++t) {
+    for (const FoundContact& f : parts_[t]) out[std::atomic_ref<int>(fill[lower(f)]).fetch_add(1, std::memory_order_relaxed)] = f;
+    std::vector<FoundContact>().swap(parts_[t]);  // kept, they would double the memory of the found pairs
+  }
+#pragma omp parallel for schedule(static, 1024)
+  for (long s = 0; s < n; ++s) std::sort(out.begin() + group_start[s], out.begin() + group_start[s + 1]);
 }
 
 void LinkedCells::find_near_walls(const Particles& p, const std::vector<WallGeometry>& walls, std::vector<FoundContact>& out,
                                   double margin) {
   if (p.size() == 0) return;
   const int threads = omp_get_max_threads();
-  per_thread_.resize(threads);
+  parts_.resize(threads);
   const long nw = static_cast<long>(walls.size());
   const double grow = rmax_ + margin;
 #pragma omp parallel num_threads(threads)
   {
-    std::vector<FoundContact>& mine = per_thread_[omp_get_thread_num()];
+    std::vector<FoundContact>& mine = parts_[omp_get_thread_num()];
     mine.clear();
     // One element at a time: a box has six walls, each covering thousands of cells.
 #pragma omp for schedule(dynamic, 1)
@@ -154,15 +182,18 @@ void LinkedCells::find_near_walls(const Particles& p, const std::vector<WallGeom
       if (outside) continue;
       for (long z = c0[2]; z <= c1[2]; ++z)
         for (long y = c0[1]; y <= c1[1]; ++y)
-          for (long x = c0[0]; x <= c1[0]; ++x)
-            for (int k = head_[(z * dims_[1] + y) * dims_[0] + x]; k >= 0; k = next_[k]) {
+          for (long x = c0[0]; x <= c1[0]; ++x) {
+            const long cell = (z * dims_[1] + y) * dims_[0] + x;
+            for (int m = cell_first_[cell]; m < cell_first_[cell + 1]; ++m) {
+              const int k = cell_slots_[m];
               const double reach = p.radius[k] + margin;
               if ((closest_point(g, p.x[k]) - p.x[k]).squaredNorm() < reach * reach)
                 mine.push_back({p.id[k], static_cast<Index>(w), k, static_cast<int>(w)});
             }
+          }
     }
   }
-  join_and_release(per_thread_, out);
+  join_and_release(parts_, out);
 }
 
 }  // namespace dem

@@ -1,8 +1,9 @@
 #pragma once
-// Near-pair search with linked cells (SPEC §4, thesis §3.5, eq. 3.1-3.4): HEAD/LIST over a grid of
-// cells with edge >= 2 Rmax + margin, each pair visited once through half of the 26 neighbour
-// cells. O(N). The grid spans the particles' bounding box each call, so no domain needs declaring;
-// along a periodic axis it spans the period instead, and the neighbour cells wrap around.
+// Near-pair search with linked cells (SPEC §4, thesis §3.5, eq. 3.1-3.4): the particles binned
+// into a grid of cells with edge >= 2 Rmax + margin (eq. 3.1's HEAD/LIST, stored as each cell's
+// run of slots), each pair visited once through half of the 26 neighbour cells. O(N). The grid spans
+// the particles' bounding box each call, so no domain needs declaring; along a periodic axis it
+// spans the period instead, and the neighbour cells wrap around.
 // The neighbour list (neighbour_list.hpp) calls it with the skin as margin.
 #include <vector>
 
@@ -15,12 +16,19 @@ namespace dem {
 
 class LinkedCells {
  public:
-  // Appends every pair closer than touching plus `margin` (|x_i - x_j| < a_i + a_j + margin) to
-  // `out`, keyed by ids (key_i < key_j), in no particular order (it depends on the thread count:
-  // sort it). A margin lets bonded pairs be found while apart (in tension). Distances are to the
-  // nearest image where `box` is periodic; throws InputError when a period is shorter than three
-  // cells (2 Rmax + margin each), which the nearest-image search needs.
-  void find_near_pairs(const Particles& p, const PeriodicBox& box, std::vector<FoundContact>& out, double margin = 0);
+  // Sets `out` to every pair closer than touching plus `margin` (|x_i - x_j| < a_i + a_j + margin),
+  // keyed by ids (key_i < key_j), grouped by the smaller of the two storage slots in slot order,
+  // key order within a group: the order place_by_storage gives (contact/contact_list.hpp), whatever
+  // the thread count, with no sort of the whole list. `group_start[s]` (n + 1 entries) is where the
+  // group of slot s starts. A margin lets bonded pairs be found while apart (in tension).
+  // Distances are to the nearest image where `box` is periodic; throws InputError when a period is
+  // shorter than three cells (2 Rmax + margin each), which the nearest-image search needs.
+  void find_near_pairs(const Particles& p, const PeriodicBox& box, std::vector<FoundContact>& out, std::vector<int>& group_start,
+                       double margin = 0);
+  void find_near_pairs(const Particles& p, const PeriodicBox& box, std::vector<FoundContact>& out, double margin = 0) {
+    std::vector<int> group_start;
+    find_near_pairs(p, box, out, group_start, margin);
+  }
   void find_near_pairs(const Particles& p, std::vector<FoundContact>& out, double margin = 0) {
     find_near_pairs(p, PeriodicBox{}, out, margin);
   }
@@ -33,15 +41,17 @@ class LinkedCells {
   void find_near_walls(const Particles& p, const std::vector<WallGeometry>& walls, std::vector<FoundContact>& out, double margin);
 
  private:
-  void bin(const Particles& p, const PeriodicBox& box, double margin);  // the grid of cells and HEAD/LIST
+  void bin(const Particles& p, const PeriodicBox& box, double margin);  // the grid and each cell's slots
   long cell_coord(double x, int d) const;
 
-  std::vector<int> head_, next_;
+  std::vector<int> cell_of_;     // per slot, its cell
+  std::vector<int> cell_first_;  // per cell, where its slots start in cell_slots_ (+ the end)
+  std::vector<int> cell_slots_;  // the slots cell by cell, in slot order within a cell
   Vec3 lo_ = Vec3::Zero();
   Vec3 edge_ = Vec3::Zero();  // per axis: a period is divided into whole cells
   double rmax_ = 0;
   long dims_[3] = {0, 0, 0};
-  std::vector<std::vector<FoundContact>> per_thread_;
+  std::vector<std::vector<FoundContact>> parts_;  // per chunk (pairs) or thread (walls), then joined
 };
 
 }  // namespace dem

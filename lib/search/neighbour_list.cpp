@@ -39,9 +39,7 @@ bool NeighbourList::needs_rebuild(const Particles& p, const PeriodicBox& box, co
 
 void NeighbourList::build(const Particles& p, const PeriodicBox& box, const std::vector<WallGeometry>& walls, double margin,
                           double skin) {
-  pairs_.clear();
-  cells_.find_near_pairs(p, box, pairs_, margin + skin);
-  __gnu_parallel::sort(pairs_.begin(), pairs_.end());  // keys are unique: the same order for any thread count
+  cells_.find_near_pairs(p, box, pairs_, pair_groups_, margin + skin);
 
   wall_pairs_.clear();
   cells_.find_near_walls(p, walls, wall_pairs_, margin + skin);
@@ -57,6 +55,10 @@ void NeighbourList::build(const Particles& p, const PeriodicBox& box, const std:
   box_build_ = box;
   valid_ = true;
   ++builds_;
+}
+
+void NeighbourList::sort_pairs_by_key() {
+  __gnu_parallel::sort(pairs_.begin(), pairs_.end());  // keys are unique: the same order for any thread count
 }
 
 bool NeighbourList::update(const Particles& p, const PeriodicBox& box, const std::vector<WallGeometry>& walls, double margin,

@@ -1,7 +1,7 @@
 #pragma once
 // Verlet neighbour list with a skin (DESIGN.md "Choices that decide speed"): candidate pairs closer
-// than touching + margin + skin, found with linked cells and sorted by key, rebuilt only when a
-// particle (or wall) may have moved far enough to create a contact the list does not hold. Which
+// than touching + margin + skin, found with linked cells, rebuilt only when a particle (or wall)
+// may have moved far enough to create a contact the list does not hold. Which
 // steps rebuild never changes the contacts found, so results do not depend on it (restart-exact).
 #include <cstdint>
 #include <vector>
@@ -21,14 +21,20 @@ class NeighbourList {
   // Forget the list (particle storage was reordered): the next update rebuilds it.
   void invalidate() { valid_ = false; }
 
-  // Candidates sorted by key, with the storage slots of the last build.
+  // Pair candidates with the storage slots of the last build, grouped by the smaller slot (key order
+  // within a group; LinkedCells::find_near_pairs), and where each slot's group starts (+ the end).
   const std::vector<FoundContact>& pairs() const { return pairs_; }
+  const std::vector<int>& pair_groups() const { return pair_groups_; }
+  // Puts pairs() in key order (pair_groups() then means nothing).
+  void sort_pairs_by_key();
+  // Wall candidates, sorted by key.
   const std::vector<FoundContact>& wall_pairs() const { return wall_pairs_; }
   // Frees pairs() and wall_pairs() once the caller has taken what it needs from them (their
   // history carried over): at 10^6 particles they are tens of MB, needed only at a rebuild.
   void release_found() {
     std::vector<FoundContact>().swap(pairs_);
     std::vector<FoundContact>().swap(wall_pairs_);
+    std::vector<int>().swap(pair_groups_);
   }
   std::int64_t builds() const { return builds_; }
 
@@ -39,6 +45,7 @@ class NeighbourList {
 
   LinkedCells cells_;
   std::vector<FoundContact> pairs_, wall_pairs_;
+  std::vector<int> pair_groups_;
   std::vector<Vec3> x_build_;
   std::vector<Index> id_build_;
   std::vector<Vec3> wall_build_;  // every element's vertices at the last build, 4 per element

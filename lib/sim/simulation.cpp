@@ -39,7 +39,7 @@ void Simulation::advance() {
 
 const ContactList& Simulation::pair_contacts() const {
   if (!pair_view_current_) {
-    active_contacts(pairs_, pair_by_key_, pair_view_);
+    active_contacts(pairs_, pair_key_order(), pair_view_);
     pair_view_current_ = true;
   }
   return pair_view_;
@@ -68,6 +68,7 @@ void Simulation::set_contacts(ContactList pairs, ContactList walls) {
   pairs_ = std::move(pairs);
   walls_ = std::move(walls);
   pair_by_key_.clear();  // given in key order
+  pair_by_key_current_ = true;
   for (ContactList* c : {&pairs_, &walls_}) {
     c->resize(c->size());  // fields a caller left empty
     std::fill(c->active.begin(), c->active.end(), 1);
@@ -86,8 +87,9 @@ void Simulation::report_overlap(double worst) const {
   std::ostringstream m;
   m << "overlap of " << worst * 100 << " % of the radius (limit simulation.max_overlap = " << params.max_overlap * 100
     << " %) at step " << step << " (t = " << time << " s), ";
+  const KeyOrder& by_key = pair_key_order();
   for (std::size_t r = 0; r < pairs_.size(); ++r) {
-    const int k = key_rank_to_position(pair_by_key_, r);
+    const int k = key_rank_to_position(by_key, r);
     const int i = pairs_.slot_i[k], j = pairs_.slot_j[k];
     const double u = p.radius[i] + p.radius[j] - separation(p, periodic, i, j).norm();
     if (pairs_.active[k] && u / std::min(p.radius[i], p.radius[j]) == worst)
@@ -202,14 +204,26 @@ void Simulation::find_contacts() {
   update_wall_geometry();
   if (!neighbours_.update(particles, periodic, wall_geometry_, margin, skin())) return;
   // New candidates: carry the history over by key; which pairs touch is decided by the force loop.
-  // Pairs are stored along the particles' storage order (locality when the storage is sorted),
-  // wall candidates in key order (each particle's form one run, in id order).
-  place_by_storage(neighbours_.pairs(), particles.size(), place_count_, pair_place_);
-  carry_history(pairs_, pair_by_key_, neighbours_.pairs(), pair_place_, carry_from_);
+  // Pairs are stored along the particles' storage order (locality when the storage is sorted), as
+  // the search finds them, wall candidates in key order (each particle's form one run, in id order).
+  if (carry_history_in_groups(pairs_, neighbours_.pairs(), neighbours_.pair_groups(), particles.id, carry_from_)) {
+    pair_by_key_current_ = false;
+  } else {  // the slots changed since the last build: carry by key (a sort of the candidates)
+    KeyOrder& old_by_key = pair_key_order();
+    neighbours_.sort_pairs_by_key();
+    place_by_storage(neighbours_.pairs(), particles.size(), place_count_, pair_place_);
+    carry_history(pairs_, old_by_key, neighbours_.pairs(), pair_place_, carry_from_);
+  }
   KeyOrder in_key_order;  // empty
   carry_history(walls_, in_key_order, neighbours_.wall_pairs(), in_key_order, carry_from_);
   neighbours_.release_found();  // carried over: free the memory until the next rebuild
   index_contacts_per_particle();
+}
+
+KeyOrder& Simulation::pair_key_order() const {
+  if (!pair_by_key_current_) sort_by_key(pairs_, pair_by_key_);
+  pair_by_key_current_ = true;
+  return pair_by_key_;
 }
 
 void Simulation::index_contacts_per_particle() {
@@ -234,8 +248,8 @@ void Simulation::index_contacts_per_particle() {
   }
   indexed_block_ = block, indexed_reach_ = reach;
   // Per-particle lists of those pair candidates (blocks apart), by key, so that their sums in
-  // integrate() give the same bits for any thread count (the force loop adds the rest). Entry
-  // codes: 2k = pair k seen from i, 2k+1 = seen from j.
+  // integrate() give the same bits for any thread count and wherever the candidates are stored
+  // (the force loop adds the rest). Entry codes: 2k = pair k seen from i, 2k+1 = seen from j.
   csr_start_.assign(n + 1, 0);
   for (long k = 0; k < npc; ++k)
     if (blocks_apart(k)) ++csr_start_[pairs_.slot_i[k] + 1], ++csr_start_[pairs_.slot_j[k] + 1];
@@ -243,12 +257,18 @@ void Simulation::index_contacts_per_particle() {
   if (static_cast<std::size_t>(csr_start_[n]) > csr_entry_.capacity()) csr_entry_.reserve(csr_start_[n]);  // no doubling
   csr_entry_.resize(csr_start_[n]);
   csr_fill_.assign(csr_start_.begin(), csr_start_.end() - 1);
-  for (long r = 0; r < npc; ++r) {
-    const int k = key_rank_to_position(pair_by_key_, r);
+  for (long k = 0; k < npc; ++k) {
     if (!blocks_apart(k)) continue;
     csr_entry_[csr_fill_[pairs_.slot_i[k]]++] = static_cast<int>(2 * k);
     csr_entry_[csr_fill_[pairs_.slot_j[k]]++] = static_cast<int>(2 * k + 1);
   }
+  const long slots = static_cast<long>(n);
+#pragma omp parallel for schedule(static, 1024)
+  for (long s = 0; s < slots; ++s)
+    std::sort(csr_entry_.begin() + csr_start_[s], csr_entry_.begin() + csr_start_[s + 1], [&](int a, int b) {
+      const long ka = a >> 1, kb = b >> 1;
+      return pairs_.key_i[ka] != pairs_.key_i[kb] ? pairs_.key_i[ka] < pairs_.key_i[kb] : pairs_.key_j[ka] < pairs_.key_j[kb];
+    });
   // Wall candidates are sorted by particle id: each particle's form one run, taken together by the
   // wall force loop (where mesh elements meet, one touch must count once).
   wall_runs_.clear();

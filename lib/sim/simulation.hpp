@@ -127,7 +127,12 @@ class Simulation {
   NeighbourList neighbours_;
   // Every candidate pair of the neighbour list, with its history; `active` = a contact this step.
   ContactList pairs_, walls_;
-  KeyOrder pair_by_key_;  // where pairs_ holds its entries in key order (contact/contact_list.hpp)
+  // Where pairs_ holds its entries in key order (contact/contact_list.hpp), found by sorting when
+  // first needed after a rebuild that did not sort (outputs, error reports and the carry after a
+  // re-sort of the storage need it; a run's steps do not).
+  KeyOrder& pair_key_order() const;
+  mutable KeyOrder pair_by_key_;
+  mutable bool pair_by_key_current_ = true;
   KeyOrder pair_place_;   // working storage of place_by_storage and carry_history
   std::vector<int> place_count_;
   std::vector<int> carry_from_;  // working storage of carry_history
