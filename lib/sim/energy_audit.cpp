@@ -8,12 +8,22 @@
 namespace dem {
 
 MechanicalEnergy mechanical_energy(const Particles& p, const Vec3& gravity, const PeriodicBox& box) {
-  MechanicalEnergy e;
-  for (std::size_t k = 0; k < p.size(); ++k) {
-    double rotational;
-    e.kinetic += kinetic_energy_of(p, k, rotational);
-    e.potential -= p.mass[k] * gravity.dot(box.unwrapped(p.x[k], p.image[k]));
+  // Blocks of a fixed size summed in parallel, then the blocks' sums in order.
+  constexpr long kBlock = 4096;
+  const long n = static_cast<long>(p.size());
+  const long blocks = (n + kBlock - 1) / kBlock;
+  std::vector<MechanicalEnergy> part(blocks);
+#pragma omp parallel for schedule(static)
+  for (long b = 0; b < blocks; ++b) {
+    MechanicalEnergy& e = part[b];
+    for (long k = b * kBlock; k < std::min(n, (b + 1) * kBlock); ++k) {
+      double rotational;
+      e.kinetic += kinetic_energy_of(p, k, rotational);
+      e.potential -= p.mass[k] * gravity.dot(box.unwrapped(p.x[k], p.image[k]));
+    }
   }
+  MechanicalEnergy e;
+  for (const MechanicalEnergy& s : part) e.kinetic += s.kinetic, e.potential += s.potential;
   return e;
 }
 

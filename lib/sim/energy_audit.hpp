@@ -22,7 +22,7 @@ namespace dem {
 
 // Kinetic (translational + rotational) and gravitational potential energy -Σ m g·x [J] (x
 // unwrapped across periodic boundaries: flowing down a periodic chute releases energy), summed in
-// storage order (one thread: the same bits for any thread count).
+// blocks of storage slots in parallel, then block by block (the same bits for any thread count).
 struct MechanicalEnergy {
   double kinetic = 0;
   double potential = 0;
