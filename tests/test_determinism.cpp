@@ -10,6 +10,7 @@
 #include <string>
 
 #include "generation/fill.hpp"
+#include "post/contact_forces.hpp"
 #include "sim/block_times.hpp"
 #include "sim/simd.hpp"
 #include "sim/simulation.hpp"
@@ -101,6 +102,32 @@ TEST(Determinism, FourWideLoopsGiveThePlainLoopsBits) {
   EXPECT_TRUE(same_bits(a.particles.x, b.particles.x));
   EXPECT_TRUE(same_bits(a.particles.w, b.particles.w));
   EXPECT_TRUE(same_bits(a.pair_contacts().spring, b.pair_contacts().spring));
+}
+
+// Keeping every pair contact's normal and force (SimParams::keep_pair_results) is output only: a
+// run that keeps only those integrate() reads (small load blocks: many contacts between blocks
+// farther apart) ends with the same bits, and its contact forces are refused until a step keeps
+// them again, after which they equal the other run's.
+TEST(Determinism, KeepingPairResultsIsOutputOnly) {
+  omp_set_num_threads(2);
+  Simulation kept = make_cloud(), lean = make_cloud();
+  kept.params.load_block = lean.params.load_block = 16;
+  lean.params.keep_pair_results = false;
+  for (int s = 0; s < 1500; ++s) kept.advance(), lean.advance();
+  ASSERT_GT(kept.pair_contacts().size(), 0u) << "the test must exercise contacts";
+  EXPECT_TRUE(same_bits(kept.particles.x, lean.particles.x));
+  EXPECT_TRUE(same_bits(kept.particles.v, lean.particles.v));
+  EXPECT_TRUE(same_bits(kept.particles.w, lean.particles.w));
+  EXPECT_TRUE(same_bits(kept.pair_contacts().spring, lean.pair_contacts().spring));
+  EXPECT_FALSE(lean.pair_results_kept());
+  EXPECT_THROW(contact_forces(lean, lean.particles.x), std::logic_error);
+  lean.params.keep_pair_results = true;
+  const std::vector<Vec3> x = kept.particles.x;
+  kept.advance(), lean.advance();
+  const ContactForceSet a = contact_forces(kept, x), b = contact_forces(lean, x);
+  ASSERT_GT(a.pairs(), 0u);
+  EXPECT_TRUE(same_bits(a.pair_force, b.pair_force));
+  EXPECT_TRUE(same_bits(a.pair_normal, b.pair_normal));
 }
 
 // The skin is speed only: it sets when the neighbour list is rebuilt, and so which candidates the

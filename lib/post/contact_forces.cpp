@@ -1,8 +1,12 @@
 #include "post/contact_forces.hpp"
 
+#include <stdexcept>
+
 namespace dem {
 
 ContactForceSet contact_forces(const Simulation& sim, const std::vector<Vec3>& x) {
+  if (!sim.pair_results_kept())
+    throw std::logic_error("contact_forces: the last step did not keep the pair contacts' forces (SimParams::keep_pair_results)");
   ContactForceSet s;
   s.periodic = sim.periodic;
   const ContactList& pc = sim.pair_contacts();
@@ -33,6 +37,7 @@ ContactForceSet contact_forces_at_state(const Simulation& sim) {
   // records are those forces (the particles' storage order never changes in a step, so the slots
   // index `sim`'s particles too).
   Simulation probe = sim;
+  probe.params.keep_pair_results = true;
   probe.advance();
   return contact_forces(probe, sim.particles.x);
 }

@@ -35,7 +35,8 @@ struct ContactForceSet {
 
 // The records of the last force evaluation of `sim` (pair_contacts(), wall_contacts()), with the
 // wall contact points taken on wall_geometry() at the particles' positions `x` (the positions the
-// forces were computed at).
+// forces were computed at). Throws std::logic_error where that step did not keep the pair
+// contacts' forces (SimParams::keep_pair_results).
 ContactForceSet contact_forces(const Simulation& sim, const std::vector<Vec3>& x);
 
 // The forces at the state as it stands (a checkpoint keeps the contact history, not the forces):

@@ -153,6 +153,9 @@ void run_stage(const StageOptions& o) {
   if (sim.step == run.stage_start_step) maybe_frame();
 
   Progress progress("run-stage " + stage->name, run.stage_steps, o.quiet);
+  // Nothing in a stage reads the pair contacts' forces: post-processing computes them on a copy
+  // (contact_forces_at_state), checkpoints keep keys, springs and bonds.
+  sim.params.keep_pair_results = false;
   const std::int64_t end = run.stage_start_step + run.stage_steps;
   while (sim.step < end) {
     sim.advance();

@@ -114,11 +114,12 @@ void counted_wall_touches(const Particles& p, const std::vector<WallGeometry>& g
                           int n, Vec3* to_wall, std::uint8_t* touching, std::uint8_t* take, int* order);
 
 // For every candidate of `pairs` and `walls`: decides whether it is a contact (`active`: touching,
-// or holding by a bond), and if so fills .normal and .sum and updates its history; a candidate
+// or holding by a bond), and if so fills .normal and .sum (of pair contacts summed in `loads`, only
+// where `keep_pair_results`: SimParams::keep_pair_results) and updates its history; a candidate
 // that is no contact gets a zero .sum and loses its spring. Pair contacts within a block or between
 // blocks at most loads.reach apart, and wall contacts, are also summed into `loads`. Returns the largest overlap
 // relative to the smaller radius of its contact.
 double compute_contact_forces(const ForceLoopInput& in, ForceVariant variant, ContactList& pairs, ContactList& walls,
-                              BlockLoads& loads);
+                              BlockLoads& loads, bool keep_pair_results = true);
 
 }  // namespace dem

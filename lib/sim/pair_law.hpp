@@ -32,21 +32,25 @@ struct PairLawArrays {
   ContactSum* sum;
   Vec3* force;   // per slot: the loads summed in the force loop (BlockLoads)
   Vec3* torque;
+  bool keep_results;  // normal and sum of every contact (SimParams::keep_pair_results)
 
-  PairLawArrays(const Particles& p, ContactList& pc, std::vector<Vec3>& force_, std::vector<Vec3>& torque_)
+  PairLawArrays(const Particles& p, ContactList& pc, std::vector<Vec3>& force_, std::vector<Vec3>& torque_, bool keep)
       : v(p.v.data()), w(p.w.data()), radius(p.radius.data()), mass(p.mass.data()), material(p.material.data()),
         fixed(p.fixed.data()), slot_i(pc.slot_i.data()), slot_j(pc.slot_j.data()), bonded(pc.bonded.data()),
-        spring(pc.spring.data()), normal(pc.normal.data()), sum(pc.sum.data()), force(force_.data()), torque(torque_.data()) {}
+        spring(pc.spring.data()), normal(pc.normal.data()), sum(pc.sum.data()), force(force_.data()), torque(torque_.data()),
+        keep_results(keep) {}
 };
 
-// What the law of contact k between slots i and j leaves: its normal n, its sum (the force on i
-// and n x f_t) and, when both slots lie before `reach_end` (the smaller always lies in the block
-// being summed), its loads on both particles.
+// What the law of contact k between slots i and j leaves: when both slots lie before `reach_end`
+// (the smaller always lies in the block being summed), its loads on both particles, else its sum
+// (the force on i and n x f_t), which integrate() adds; its normal and sum always where
+// a.keep_results.
 inline void keep_pair_result(const PairLawArrays& a, long k, int i, int j, const Vec3& n, const Vec3& on_i, const Vec3& moment,
                              int reach_end) {
-  a.normal[k] = n;
-  a.sum[k] = {on_i, moment};
-  if (std::max(i, j) < reach_end) {
+  const bool summed_here = std::max(i, j) < reach_end;
+  if (a.keep_results) a.normal[k] = n;
+  if (a.keep_results || !summed_here) a.sum[k] = {on_i, moment};
+  if (summed_here) {
     a.force[i] += on_i;  // eq. 2.31-2.32
     a.force[j] -= on_i;
     a.torque[i] += a.radius[i] * moment;  // eq. 2.33-2.34: a n x f_t for i and j alike

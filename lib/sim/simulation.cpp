@@ -27,7 +27,8 @@ void Simulation::advance() {
   block_torque_.resize(particles.size());
   BlockLoads loads{params.load_block, params.load_reach, block_first_, force_times_, block_done_, ++force_epoch_,
                    block_force_, block_torque_};
-  const double worst_overlap = compute_contact_forces(in, choose_force_variant(*this), pairs_, walls_, loads);
+  const double worst_overlap = compute_contact_forces(in, choose_force_variant(*this), pairs_, walls_, loads, params.keep_pair_results);
+  pair_results_kept_ = params.keep_pair_results;
   contacts_modified();
   if (worst_overlap > params.max_overlap) report_overlap(worst_overlap);
   if (params.max_energy_gain > 0) audit_energy();
@@ -69,6 +70,7 @@ void Simulation::set_contacts(ContactList pairs, ContactList walls) {
   walls_ = std::move(walls);
   pair_by_key_.clear();  // given in key order
   pair_by_key_current_ = true;
+  pair_results_kept_ = true;  // those given
   for (ContactList* c : {&pairs_, &walls_}) {
     c->resize(c->size());  // fields a caller left empty
     std::fill(c->active.begin(), c->active.end(), 1);
