@@ -162,6 +162,7 @@ template <class Normal>
 double wall_forces(const ForceLoopInput& in, ContactList& wc, BlockLoads& out) {
   const Particles& p = in.particles;
   const long runs = static_cast<long>(in.wall_runs.size()) - 1;
+  if (runs <= 0) return 0;  // no wall candidates (the chute): no threads started, 3-5 us a step on this machine
   double worst = 0;
 #pragma omp parallel reduction(max : worst)
   {
