@@ -145,8 +145,8 @@ bool carry_history_in_groups(ContactList& list, const std::vector<FoundContact>&
     fits = std::min(fits, static_cast<int>(ok));
   }
   if (!fits) return false;
-  // Where each slot's old group starts: the slots after the last entry's group and up to this
-  // entry's start here.
+  // Where each slot's old group starts: entry k starts the groups of the slots after entry k - 1's
+  // slot, up to its own (empty groups start where the next one does).
   std::vector<int> old_start(slots + 1);
 #pragma omp parallel for schedule(static)
   for (long k = 0; k <= old_n; ++k) {

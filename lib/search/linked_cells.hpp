@@ -51,7 +51,7 @@ class LinkedCells {
   Vec3 edge_ = Vec3::Zero();  // per axis: a period is divided into whole cells
   double rmax_ = 0;
   long dims_[3] = {0, 0, 0};
-  std::vector<std::vector<FoundContact>> parts_;  // per chunk (pairs) or thread (walls), then joined
+  std::vector<std::vector<FoundContact>> parts_;  // per thread, then joined
 };
 
 }  // namespace dem
