@@ -170,9 +170,7 @@ bool carry_history_in_groups(ContactList& list, const std::vector<FoundContact>&
 void sort_by_key(const ContactList& list, KeyOrder& by_key) {
   by_key.resize(list.size());
   for (std::size_t k = 0; k < list.size(); ++k) by_key[k] = static_cast<int>(k);
-  __gnu_parallel::sort(by_key.begin(), by_key.end(), [&](int a, int b) {
-    return list.key_i[a] != list.key_i[b] ? list.key_i[a] < list.key_i[b] : list.key_j[a] < list.key_j[b];
-  });
+  __gnu_parallel::sort(by_key.begin(), by_key.end(), [&](int a, int b) { return key_before(list, a, b); });
 }
 
 std::size_t active_count(const ContactList& list) {

@@ -81,6 +81,11 @@ void carry_history(ContactList& list, KeyOrder& by_key, const std::vector<FoundC
 bool carry_history_in_groups(ContactList& list, const std::vector<FoundContact>& found, const std::vector<int>& groups,
                              const std::vector<Index>& id_of_slot, std::vector<int>& from);
 
+// Whether entry a of `list` comes before entry b in key order.
+inline bool key_before(const ContactList& list, std::size_t a, std::size_t b) {
+  return list.key_i[a] != list.key_i[b] ? list.key_i[a] < list.key_i[b] : list.key_j[a] < list.key_j[b];
+}
+
 // Where `list` holds its entries in key order (a KeyOrder for it), by sorting.
 void sort_by_key(const ContactList& list, KeyOrder& by_key);
 

@@ -106,13 +106,14 @@ inline void wait_until_done(std::vector<long>& done, long b, long epoch) {
 }
 
 template <class Normal, bool Periodic, bool Fixed>
-double pair_forces(const ForceLoopInput& in, ContactList& pc, BlockLoads& out, bool keep_results) {
+double pair_forces(const ForceLoopInput& in, ContactList& pc, BlockLoads& out) {
   const long blocks = static_cast<long>(out.first.size()) - 1;
   const long slots = static_cast<long>(in.particles.size());
   const long phases = out.reach + 1;
   out.times.fit(blocks, [&](long b) { return out.first[b + 1] - out.first[b] + 1; });  // candidates, until timed
   out.done.resize(blocks);
-  const ChunkInput chunk{in, CandidateArrays(in.particles, pc), PairLawArrays(in.particles, pc, out.force, out.torque, keep_results), simd_loops_on()};
+  const ChunkInput chunk{in, CandidateArrays(in.particles, pc),
+                         PairLawArrays(in.particles, pc, out.force, out.torque, in.keep_pair_results), simd_loops_on()};
   double worst = 0;
 #pragma omp parallel reduction(max : worst)
   {
@@ -228,12 +229,12 @@ double wall_forces(const ForceLoopInput& in, ContactList& wc, BlockLoads& out) {
 }
 
 template <class Normal>
-double all_forces(const ForceLoopInput& in, ContactList& pairs, ContactList& walls, BlockLoads& loads, bool keep) {
+double all_forces(const ForceLoopInput& in, ContactList& pairs, ContactList& walls, BlockLoads& loads) {
   double worst_pair;
   if (in.periodic.any())
-    worst_pair = in.any_fixed ? pair_forces<Normal, true, true>(in, pairs, loads, keep) : pair_forces<Normal, true, false>(in, pairs, loads, keep);
+    worst_pair = in.any_fixed ? pair_forces<Normal, true, true>(in, pairs, loads) : pair_forces<Normal, true, false>(in, pairs, loads);
   else
-    worst_pair = in.any_fixed ? pair_forces<Normal, false, true>(in, pairs, loads, keep) : pair_forces<Normal, false, false>(in, pairs, loads, keep);
+    worst_pair = in.any_fixed ? pair_forces<Normal, false, true>(in, pairs, loads) : pair_forces<Normal, false, false>(in, pairs, loads);
   return std::max(worst_pair, wall_forces<Normal>(in, walls, loads));
 }
 
@@ -299,13 +300,12 @@ const char* variant_name(ForceVariant v) {
 }
 
 double compute_contact_forces(const ForceLoopInput& in, ForceVariant variant, ContactList& pairs, ContactList& walls,
-                              BlockLoads& loads, bool keep_pair_results) {
-  const bool keep = keep_pair_results;
+                              BlockLoads& loads) {
   switch (variant) {
-    case ForceVariant::Cundall: return all_forces<CundallNormal>(in, pairs, walls, loads, keep);
-    case ForceVariant::Liu: return all_forces<LiuNormal>(in, pairs, walls, loads, keep);
-    case ForceVariant::Mendes: return all_forces<MendesNormal>(in, pairs, walls, loads, keep);
-    case ForceVariant::Mixed: return all_forces<MixedNormal>(in, pairs, walls, loads, keep);
+    case ForceVariant::Cundall: return all_forces<CundallNormal>(in, pairs, walls, loads);
+    case ForceVariant::Liu: return all_forces<LiuNormal>(in, pairs, walls, loads);
+    case ForceVariant::Mendes: return all_forces<MendesNormal>(in, pairs, walls, loads);
+    case ForceVariant::Mixed: return all_forces<MixedNormal>(in, pairs, walls, loads);
   }
   return 0;
 }

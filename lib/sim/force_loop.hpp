@@ -25,6 +25,7 @@ struct ForceLoopInput {
   const PeriodicBox& periodic;
   bool any_fixed;  // some particle is held in place (Particles::fixed)
   double dt;
+  bool keep_pair_results;  // SimParams::keep_pair_results
 };
 
 // Per storage slot, the loads the force loop adds as it goes (no per-contact result to read back):
@@ -115,11 +116,11 @@ void counted_wall_touches(const Particles& p, const std::vector<WallGeometry>& g
 
 // For every candidate of `pairs` and `walls`: decides whether it is a contact (`active`: touching,
 // or holding by a bond), and if so fills .normal and .sum (of pair contacts summed in `loads`, only
-// where `keep_pair_results`: SimParams::keep_pair_results) and updates its history; a candidate
+// where in.keep_pair_results) and updates its history; a candidate
 // that is no contact gets a zero .sum and loses its spring. Pair contacts within a block or between
 // blocks at most loads.reach apart, and wall contacts, are also summed into `loads`. Returns the largest overlap
 // relative to the smaller radius of its contact.
 double compute_contact_forces(const ForceLoopInput& in, ForceVariant variant, ContactList& pairs, ContactList& walls,
-                              BlockLoads& loads, bool keep_pair_results = true);
+                              BlockLoads& loads);
 
 }  // namespace dem

@@ -21,13 +21,13 @@ void Simulation::advance() {
     sort_storage();
   find_contacts();
   const bool any_fixed = std::find(particles.fixed.begin(), particles.fixed.end(), 1) != particles.fixed.end();
-  const ForceLoopInput in{particles, materials, walls, wall_geometry_, wall_runs_, periodic, any_fixed, dt};
+  const ForceLoopInput in{particles, materials, walls, wall_geometry_, wall_runs_, periodic, any_fixed, dt, params.keep_pair_results};
   if (indexed_block_ != params.load_block || indexed_reach_ != params.load_reach) index_contacts_per_particle();
   block_force_.resize(particles.size());
   block_torque_.resize(particles.size());
   BlockLoads loads{params.load_block, params.load_reach, block_first_, force_times_, block_done_, ++force_epoch_,
                    block_force_, block_torque_};
-  const double worst_overlap = compute_contact_forces(in, choose_force_variant(*this), pairs_, walls_, loads, params.keep_pair_results);
+  const double worst_overlap = compute_contact_forces(in, choose_force_variant(*this), pairs_, walls_, loads);
   pair_results_kept_ = params.keep_pair_results;
   contacts_modified();
   if (worst_overlap > params.max_overlap) report_overlap(worst_overlap);
@@ -268,8 +268,7 @@ void Simulation::index_contacts_per_particle() {
 #pragma omp parallel for schedule(static, 1024)
   for (long s = 0; s < slots; ++s)
     std::sort(csr_entry_.begin() + csr_start_[s], csr_entry_.begin() + csr_start_[s + 1], [&](int a, int b) {
-      const long ka = a >> 1, kb = b >> 1;
-      return pairs_.key_i[ka] != pairs_.key_i[kb] ? pairs_.key_i[ka] < pairs_.key_i[kb] : pairs_.key_j[ka] < pairs_.key_j[kb];
+      return key_before(pairs_, a >> 1, b >> 1);
     });
   // Wall candidates are sorted by particle id: each particle's form one run, taken together by the
   // wall force loop (where mesh elements meet, one touch must count once).
