@@ -12,6 +12,7 @@
 #include <omp.h>
 
 #include "sim/force_loop.hpp"
+#include "sim/motion.hpp"
 #include "core/error.hpp"
 
 namespace dem {
@@ -280,28 +281,24 @@ void Simulation::index_contacts_per_particle() {
 
 void Simulation::integrate(bool any_fixed) {
   // eq. 2.38-2.47: v^{n+1/2} = (a v^{n-1/2} + acc dt) b, a = 1 - alpha dt/2, b = 1/(1 + alpha dt/2).
-  const double ar = 1 - params.alpha_r * dt / 2, br = 1 / (1 + params.alpha_r * dt / 2);
-  const double at = 1 - params.alpha_theta * dt / 2, bt = 1 / (1 + params.alpha_theta * dt / 2);
-  const double step_dt = dt;
-  const Vec3 gravity = params.gravity;
-  const long n = static_cast<long>(particles.size());
+  const MotionConstants c{1 - params.alpha_r * dt / 2, 1 / (1 + params.alpha_r * dt / 2), 1 - params.alpha_theta * dt / 2,
+                          1 / (1 + params.alpha_theta * dt / 2), dt, params.gravity};
+  Particles& p = particles;
+  const MotionArrays a{.x = p.x.data(),
+                       .v = p.v.data(),
+                       .w = p.w.data(),
+                       .mass = p.mass.data(),
+                       .radius = p.radius.data(),
+                       .fixed = any_fixed ? p.fixed.data() : nullptr,
+                       .force = block_force_.data(),
+                       .torque = block_torque_.data(),
+                       .csr_start = csr_start_.data(),
+                       .csr_entry = csr_entry_.data(),
+                       .active = pairs_.active.data(),
+                       .sum = pairs_.sum.data()};
+  const long n = static_cast<long>(p.size());
   const PeriodicBox box = periodic;
-  const bool wrap = box.any();
-  // The arrays' addresses in locals: stores of positions and velocities (doubles) could change the
-  // box, gravity or dt for the compiler, which then reloaded them for every particle.
-  Vec3* const x = particles.x.data();
-  Vec3* const v = particles.v.data();
-  Vec3* const w = particles.w.data();
-  Vec3i* const image = particles.image.data();
-  const double* const mass = particles.mass.data();
-  const double* const radius = particles.radius.data();
-  const std::uint8_t* const fixed = particles.fixed.data();
-  const Vec3* const block_force = block_force_.data();
-  const Vec3* const block_torque = block_torque_.data();
-  const int* const csr_start = csr_start_.data();
-  const int* const csr_entry = csr_entry_.data();
-  const std::uint8_t* const active = pairs_.active.data();
-  const ContactSum* const sum = pairs_.sum.data();
+  Vec3i* const image = p.image.data();
   long bad = -1;
   // One pass: each particle's loads are summed and used at once (no per-particle force arrays to
   // write and read back: this loop is bound by memory traffic at 1e5 particles and more).
@@ -315,8 +312,7 @@ void Simulation::integrate(bool any_fixed) {
   // Each thread takes its own copies of these (firstprivate), kept in registers: shared, they are
   // read through OpenMP's record of shared variables, which the compiler reloaded after every store
   // (Eigen's stores are SSE intrinsics, which may alias anything): 10 % of this loop's time.
-#pragma omp parallel reduction(max : bad) firstprivate(x, v, w, image, mass, radius, fixed, block_force, block_torque, \
-                                                         csr_start, csr_entry, active, sum, ar, br, at, bt, step_dt, gravity, box, wrap)
+#pragma omp parallel reduction(max : bad) firstprivate(a, c, box, image)
   {
     const long threads = omp_get_num_threads(), t = omp_get_thread_num();
     const long start = integrate_times_.run_start(t, threads), end = integrate_times_.run_start(t + 1, threads);
@@ -324,35 +320,10 @@ void Simulation::integrate(bool any_fixed) {
     for (long b = start; b < end; ++b) {
       const double tb = omp_get_wtime();
       const long lo = b * block, hi = std::min(n, lo + block);
-      for (long i = lo; i < hi; ++i) {
-        if (any_fixed && fixed[i]) {  // held in place
-          v[i] = w[i] = Vec3::Zero();
-          continue;
-        }
-        // The net load (eq. 2.31-2.34): gravity, the sums of the force loop (BlockLoads), then its
-        // contacts with particles in blocks farther apart, in the fixed order of
-        // index_contacts_per_particle: the same bits for any thread count. Mere candidates are skipped
-        // (they hold exact zeros, ContactList), here and in the block sums, so the candidate set,
-        // which depends on when the list was rebuilt, never changes a bit of the result; skipping
-        // reads a byte per candidate instead of 48.
-        Vec3 force = mass[i] * gravity + block_force[i];
-        Vec3 torque = block_torque[i];
-        for (int e = csr_start[i]; e < csr_start[i + 1]; ++e) {
-          const unsigned code = static_cast<unsigned>(csr_entry[e]);
-          const long k = code >> 1;
-          if (!active[k]) continue;
-          // Torques, eq. 2.33-2.34: M = a n x f_t for i and j alike (M_j = (a_j / a_i) M_i).
-          force += (code & 1) ? Vec3(-sum[k].force) : sum[k].force;  // eq. 2.31-2.32
-          torque += radius[i] * sum[k].moment;
-        }
-        v[i] = (ar * v[i] + force * (step_dt / mass[i])) * br;
-        w[i] = (at * w[i] + torque * (step_dt / sphere_inertia(mass[i], radius[i]))) * bt;
-        x[i] += v[i] * step_dt;
-        if (wrap) box.wrap(x[i], image[i]);
-        // NaN or Inf in any component makes the sum NaN or Inf (so does a sum beyond 1e308: a state as
-        // broken). Eigen's allFinite on each vector cost 7 % of a settle's time.
-        if (!std::isfinite(x[i].sum() + v[i].sum() + w[i].sum())) bad = std::max(bad, i);
-      }
+      bad = std::max(bad, move_particles(a, c, lo, hi));
+      if (box.any())  // held particles stay where they were put
+        for (long i = lo; i < hi; ++i)
+          if (!(a.fixed && a.fixed[i])) box.wrap(a.x[i], image[i]);
       integrate_times_.record(b, omp_get_wtime() - tb);
     }
   }

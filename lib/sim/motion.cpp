@@ -1,0 +1,130 @@
+#include "sim/motion.hpp"
+
+#include <algorithm>
+#include <cstring>
+
+#include "sim/simd.hpp"
+
+namespace dem {
+
+namespace {
+
+// Particle i's contacts summed here, added to its loads in the fixed order of
+// index_contacts_per_particle: the same bits for any thread count. Mere candidates are skipped
+// (they hold exact zeros, ContactList), here and in the force loop's sums, so the candidate set,
+// which depends on when the list was rebuilt, never changes a bit of the result; skipping reads a
+// byte per candidate instead of 48.
+inline void add_contacts_summed_here(const MotionArrays& a, long i, Vec3& force, Vec3& torque) {
+  for (int e = a.csr_start[i]; e < a.csr_start[i + 1]; ++e) {
+    const unsigned code = static_cast<unsigned>(a.csr_entry[e]);
+    const long k = code >> 1;
+    if (!a.active[k]) continue;
+    // Torques, eq. 2.33-2.34: M = a n x f_t for i and j alike (M_j = (a_j / a_i) M_i).
+    force += (code & 1) ? Vec3(-a.sum[k].force) : a.sum[k].force;  // eq. 2.31-2.32
+    torque += a.radius[i] * a.sum[k].moment;
+  }
+}
+
+// One test per coordinate, no branch (Eigen's allFinite on each vector cost 7 % of a settle's time).
+inline bool finite_state(const MotionArrays& a, long i) {
+  const Vec3 s = (a.x[i] + a.v[i]) + a.w[i];
+  return (std::abs(s.x()) <= DBL_MAX) & (std::abs(s.y()) <= DBL_MAX) & (std::abs(s.z()) <= DBL_MAX);
+}
+
+// Particle i: held, it stops; free, it moves under its net load (eq. 2.31-2.34). False where its
+// new state is not finite.
+inline bool move_one(const MotionArrays& a, const MotionConstants& c, long i) {
+  if (a.fixed && a.fixed[i]) {
+    a.v[i] = a.w[i] = Vec3::Zero();
+    return true;
+  }
+  Vec3 force = a.mass[i] * c.gravity + a.force[i];
+  Vec3 torque = a.torque[i];
+  add_contacts_summed_here(a, i, force, torque);
+  a.v[i] = (c.ar * a.v[i] + force * (c.dt / a.mass[i])) * c.br;
+  a.w[i] = (c.at * a.w[i] + torque * (c.dt / sphere_inertia(a.mass[i], a.radius[i]))) * c.bt;
+  a.x[i] += a.v[i] * c.dt;
+  return finite_state(a, i);
+}
+
+long move_one_by_one(const MotionArrays& a, const MotionConstants& c, long first, long last) {
+  long bad = -1;
+  for (long i = first; i < last; ++i)
+    if (!move_one(a, c, i)) bad = i;
+  return bad;
+}
+
+#ifdef DEM_SIMD_LOOPS
+// Four particles' vectors are twelve consecutive doubles, three registers: [x0 y0 z0 x1],
+// [y1 z1 x2 y2], [z2 x3 y3 z3]. A per-particle factor s is spread to match: [s0 s0 s0 s1],
+// [s1 s1 s2 s2], [s2 s3 s3 s3]; gravity to [gx gy gz gx], [gy gz gx gy], [gz gx gy gz].
+[[gnu::target("avx2")]] inline void spread(__m256d s, __m256d out[3]) {
+  out[0] = _mm256_permute4x64_pd(s, 0b01000000);
+  out[1] = _mm256_permute4x64_pd(s, 0b10100101);
+  out[2] = _mm256_permute4x64_pd(s, 0b11111110);
+}
+
+[[gnu::target("avx2")]] long move_four_at_a_time(const MotionArrays& a, const MotionConstants& c, long first, long last) {
+  const __m256d ar = _mm256_set1_pd(c.ar), br = _mm256_set1_pd(c.br), at = _mm256_set1_pd(c.at), bt = _mm256_set1_pd(c.bt);
+  const __m256d dt = _mm256_set1_pd(c.dt), two_fifths = _mm256_set1_pd(0.4), largest = _mm256_set1_pd(DBL_MAX);
+  const __m256d sign = _mm256_set1_pd(-0.0);
+  const Vec3& g = c.gravity;
+  const __m256d gravity[3] = {_mm256_setr_pd(g.x(), g.y(), g.z(), g.x()), _mm256_setr_pd(g.y(), g.z(), g.x(), g.y()),
+                              _mm256_setr_pd(g.z(), g.x(), g.y(), g.z())};
+  long bad = -1;
+  long i = first;
+  for (; i + 4 <= last; i += 4) {
+    if (a.fixed) {
+      std::uint32_t held;
+      std::memcpy(&held, a.fixed + i, 4);
+      if (held) {  // one by one
+        bad = std::max(bad, move_one_by_one(a, c, i, i + 4));
+        continue;
+      }
+    }
+    double* const x = a.x[i].data();
+    double* const v = a.v[i].data();
+    double* const w = a.w[i].data();
+    const __m256d m = _mm256_loadu_pd(a.mass + i), r = _mm256_loadu_pd(a.radius + i);
+    __m256d mass[3], to_v[3], to_w[3], force[3], torque[3];
+    spread(m, mass);
+    spread(dt / m, to_v);                             // dt / m
+    spread(dt / (((two_fifths * m) * r) * r), to_w);  // dt / I, I = sphere_inertia(m, a)
+    for (int q = 0; q < 3; ++q) {
+      force[q] = mass[q] * gravity[q] + _mm256_loadu_pd(a.force[i].data() + 4 * q);
+      torque[q] = _mm256_loadu_pd(a.torque[i].data() + 4 * q);
+    }
+    if (a.csr_start[i + 4] != a.csr_start[i]) {  // some have contacts summed here: added one by one
+      alignas(32) Vec3 f[4], t[4];
+      for (int q = 0; q < 3; ++q) _mm256_store_pd(f[0].data() + 4 * q, force[q]), _mm256_store_pd(t[0].data() + 4 * q, torque[q]);
+      for (int p = 0; p < 4; ++p) add_contacts_summed_here(a, i + p, f[p], t[p]);
+      for (int q = 0; q < 3; ++q) force[q] = _mm256_load_pd(f[0].data() + 4 * q), torque[q] = _mm256_load_pd(t[0].data() + 4 * q);
+    }
+    int broken = 0;
+    for (int q = 0; q < 3; ++q) {
+      const __m256d vq = (ar * _mm256_loadu_pd(v + 4 * q) + force[q] * to_v[q]) * br;
+      const __m256d wq = (at * _mm256_loadu_pd(w + 4 * q) + torque[q] * to_w[q]) * bt;
+      const __m256d xq = _mm256_loadu_pd(x + 4 * q) + vq * dt;
+      _mm256_storeu_pd(v + 4 * q, vq), _mm256_storeu_pd(w + 4 * q, wq), _mm256_storeu_pd(x + 4 * q, xq);
+      // finite_state: |x + v + w| is NaN or above the largest double somewhere.
+      const __m256d sum = _mm256_andnot_pd(sign, (xq + vq) + wq);
+      broken |= _mm256_movemask_pd(_mm256_cmp_pd(sum, largest, _CMP_NLE_UQ));
+    }
+    if (broken)  // which one
+      for (long k = i; k < i + 4; ++k)
+        if (!finite_state(a, k)) bad = k;
+  }
+  return std::max(bad, move_one_by_one(a, c, i, last));
+}
+#endif
+
+}  // namespace
+
+long move_particles(const MotionArrays& a, const MotionConstants& c, long first, long last) {
+#ifdef DEM_SIMD_LOOPS
+  if (simd_loops_on()) return move_four_at_a_time(a, c, first, last);
+#endif
+  return move_one_by_one(a, c, first, last);
+}
+
+}  // namespace dem

@@ -1,0 +1,46 @@
+#pragma once
+// One step of motion (eq. 2.38-2.47) once the force loop has summed the contact loads: each
+// particle's net load (gravity, the force loop's sums, then its contacts summed here), and its new
+// velocities and position. Four particles at a time with AVX2 (sim/simd.hpp) where the processor
+// has it, else one by one: per coordinate the same operations in the same order, so the same bits.
+#include <cfloat>
+#include <cmath>
+#include <cstdint>
+
+#include "contact/contact_list.hpp"
+#include "core/types.hpp"
+#include "state/particles.hpp"
+
+namespace dem {
+
+// v^{n+1/2} = (a v^{n-1/2} + acc dt) b, a = 1 - alpha dt/2, b = 1/(1 + alpha dt/2), for the
+// translation (ar, br) and the rotation (at, bt).
+struct MotionConstants {
+  double ar, br, at, bt, dt;
+  Vec3 gravity;
+};
+
+// What the step reads and writes, as bare arrays (see CandidateArrays).
+struct MotionArrays {
+  Vec3* x;
+  Vec3* v;
+  Vec3* w;
+  const double* mass;
+  const double* radius;
+  const std::uint8_t* fixed;  // null where no particle is held
+  const Vec3* force;          // the force loop's sums (BlockLoads)
+  const Vec3* torque;
+  // The contacts summed here (Simulation::index_contacts_per_particle): particle i's are entries
+  // csr_start[i] to csr_start[i + 1] of csr_entry, 2k for pair k seen from its i, 2k + 1 from its j.
+  const int* csr_start;
+  const int* csr_entry;
+  const std::uint8_t* active;
+  const ContactSum* sum;
+};
+
+// Particles [first, last): held ones stop, the others move. Returns the last particle whose new
+// state is not finite (NaN or Inf in x, v or w makes a coordinate of x + v + w NaN or Inf; so does
+// a sum beyond 1e308: a state as broken), or -1.
+long move_particles(const MotionArrays& a, const MotionConstants& c, long first, long last);
+
+}  // namespace dem

@@ -1,0 +1,147 @@
+// The step of motion (sim/motion.hpp): four particles at a time (AVX2) must give the bits of one
+// by one, and both the definition of eq. 2.38-2.47 written out here, coordinate by coordinate:
+// v' = (a_r v + (m g + F + sum of the contacts summed here) dt / m) b_r, w' likewise with
+// I = 2/5 m a^2, x' = x + v' dt; held particles stop; the last particle whose state is not finite
+// is reported.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "sim/motion.hpp"
+#include "sim/simd.hpp"
+
+#include "same_bits.hpp"
+
+namespace dem {
+namespace {
+
+// 1,003 particles (groups of four and a remainder) with random states and loads; every 7th held;
+// a fifth have contacts summed here (random pairs, some of them mere candidates), in runs and
+// alone, some in groups with held particles.
+struct MotionCase {
+  std::vector<Vec3> x, v, w, force, torque;
+  std::vector<double> mass, radius;
+  std::vector<std::uint8_t> fixed;
+  std::vector<int> csr_start, csr_entry;
+  std::vector<std::uint8_t> active;
+  std::vector<ContactSum> sum;
+  MotionConstants c{0.9995, 1 / 1.0005, 0.998, 1 / 1.002, 1e-5, Vec3(0.3, -0.2, -9.81)};
+
+  explicit MotionCase(long n) {
+    std::mt19937_64 rng(5);
+    std::uniform_real_distribution<double> u(-1, 1);
+    const auto vec = [&](double s) { return Vec3(s * u(rng), s * u(rng), s * u(rng)); };
+    const long pairs = 300;
+    for (long k = 0; k < pairs; ++k) {
+      active.push_back(u(rng) > -0.5);  // a quarter are mere candidates (whose sums are zero)
+      sum.push_back(active.back() ? ContactSum{vec(1e-3), vec(1e-4)} : ContactSum{});
+    }
+    csr_start.push_back(0);
+    std::uniform_int_distribution<int> pair(0, pairs - 1), count(1, 4);
+    for (long i = 0; i < n; ++i) {
+      x.push_back(vec(1)), v.push_back(vec(0.1)), w.push_back(vec(10)), force.push_back(vec(1e-3)), torque.push_back(vec(1e-6));
+      mass.push_back(1e-5 * (1.5 + u(rng))), radius.push_back(1e-3 * (1.5 + u(rng)));
+      fixed.push_back(i % 7 == 3);
+      if (i % 5 == 0 || (i > 500 && i < 520))
+        for (int e = count(rng); e > 0; --e) csr_entry.push_back(2 * pair(rng) + (u(rng) > 0));
+      csr_start.push_back(static_cast<int>(csr_entry.size()));
+    }
+  }
+  MotionArrays arrays(bool any_fixed) {
+    return {.x = x.data(),
+            .v = v.data(),
+            .w = w.data(),
+            .mass = mass.data(),
+            .radius = radius.data(),
+            .fixed = any_fixed ? fixed.data() : nullptr,
+            .force = force.data(),
+            .torque = torque.data(),
+            .csr_start = csr_start.data(),
+            .csr_entry = csr_entry.data(),
+            .active = active.data(),
+            .sum = sum.data()};
+  }
+};
+
+// What a step gives particle i, by the definition.
+struct Expected {
+  Vec3 x, v, w;
+};
+Expected definition(const MotionCase& m, long i, bool any_fixed) {
+  if (any_fixed && m.fixed[i]) return {m.x[i], Vec3::Zero(), Vec3::Zero()};
+  Expected e;
+  for (int d = 0; d < 3; ++d) {
+    double f = m.mass[i] * m.c.gravity[d] + m.force[i][d], t = m.torque[i][d];
+    for (int q = m.csr_start[i]; q < m.csr_start[i + 1]; ++q) {
+      const int k = m.csr_entry[q] >> 1;
+      if (!m.active[k]) continue;
+      f += (m.csr_entry[q] & 1) ? -m.sum[k].force[d] : m.sum[k].force[d];
+      t += m.radius[i] * m.sum[k].moment[d];
+    }
+    const double inertia = 0.4 * m.mass[i] * m.radius[i] * m.radius[i];
+    e.v[d] = (m.c.ar * m.v[i][d] + f * (m.c.dt / m.mass[i])) * m.c.br;
+    e.w[d] = (m.c.at * m.w[i][d] + t * (m.c.dt / inertia)) * m.c.bt;
+    e.x[d] = m.x[i][d] + e.v[d] * m.c.dt;
+  }
+  return e;
+}
+
+const std::vector<int>& widths() {
+  static const std::vector<int> w = simd_loops_available() ? std::vector<int>{0, 1} : std::vector<int>{0};
+  return w;
+}
+
+TEST(Motion, FourAtATimeGiveTheDefinitionsBits) {
+  for (bool any_fixed : {false, true})
+    for (auto [first, last] : {std::pair<long, long>{0, 1003}, {1, 6}, {498, 523}, {5, 7}}) {
+      std::vector<MotionCase> runs;
+      for (int simd : widths()) {
+        MotionCase m(1003);
+        set_simd_loops(simd);
+        EXPECT_EQ(move_particles(m.arrays(any_fixed), m.c, first, last), -1);
+        runs.push_back(std::move(m));
+      }
+      set_simd_loops(true);
+      const MotionCase before(1003);
+      for (const MotionCase& m : runs)
+        for (long i = 0; i < 1003; ++i) {
+          const bool moved = i >= first && i < last;
+          const Expected e = moved ? definition(before, i, any_fixed) : Expected{before.x[i], before.v[i], before.w[i]};
+          ASSERT_EQ(m.x[i], e.x) << "particle " << i << (any_fixed ? " (held ones)" : "");
+          ASSERT_EQ(m.v[i], e.v) << "particle " << i;
+          ASSERT_EQ(m.w[i], e.w) << "particle " << i;
+        }
+      if (runs.size() == 2) {
+        EXPECT_TRUE(same_bits(runs[0].x, runs[1].x));
+        EXPECT_TRUE(same_bits(runs[0].v, runs[1].v));
+        EXPECT_TRUE(same_bits(runs[0].w, runs[1].w));
+      }
+    }
+}
+
+// A NaN, an infinity or a coordinate beyond the largest double after the step: the last such
+// particle is reported, four at a time as one by one.
+TEST(Motion, ReportsTheLastParticleWhoseStateIsNotFinite) {
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  for (int simd : widths()) {
+    set_simd_loops(simd);
+    for (long bad : {0L, 2L, 5L, 998L, 1002L}) {
+      MotionCase m(1003);
+      m.force[bad / 2].x() = nan;  // an earlier one, in another group or the same
+      m.torque[bad].z() = inf;
+      EXPECT_EQ(move_particles(m.arrays(false), m.c, 0, 1003), bad) << (simd ? "four at a time" : "one by one");
+      MotionCase large(1003);
+      large.x[bad] = Vec3(0, 0.9 * std::numeric_limits<double>::max(), 0);
+      large.v[bad] = Vec3(0, 0.2 * std::numeric_limits<double>::max(), 0);  // x and v stay finite, x + v does not
+      EXPECT_TRUE(std::isfinite(large.x[bad].y() + large.v[bad].y() * large.c.dt));
+      EXPECT_EQ(move_particles(large.arrays(false), large.c, 0, 1003), bad) << (simd ? "four at a time" : "one by one");
+    }
+  }
+  set_simd_loops(true);
+}
+
+}  // namespace
+}  // namespace dem
