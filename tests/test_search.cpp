@@ -5,7 +5,9 @@
 #include <random>
 
 #include "core/error.hpp"
+#include "search/largest_move.hpp"
 #include "search/linked_cells.hpp"
+#include "sim/simd.hpp"
 #include "sim/simulation.hpp"
 
 namespace dem {
@@ -240,6 +242,43 @@ TEST(NeighbourList, PeriodicContactsEqualBruteForceEveryStep) {
 
 // Pair lists are stored along the particles' storage order (place_by_storage), not in key order:
 // through a rebuild the history still follows the keys, and active_contacts lists key order.
+// The displacement that decides a rebuild: four particles at a time (AVX2) as one by one, and both
+// the largest |d|^2 over the particles by the definition (d through PeriodicBox::nearest), with
+// the largest move placed in each lane of a group of four and in the remainder, across a periodic
+// boundary and not, in ranges of every length modulo 4.
+TEST(NeighbourList, LargestMoveIsTheDefinitions) {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(0, 1);
+  PeriodicBox box;
+  box.axis = {true, false, true};
+  box.lo = Vec3(0, 0, -1), box.hi = Vec3(2, 0, 3);
+  std::vector<Vec3> before(103), after(103);
+  for (std::size_t k = 0; k < before.size(); ++k) {
+    before[k] = Vec3(2 * u(rng), 5 * u(rng), -1 + 4 * u(rng));
+    after[k] = before[k] + 1e-3 * Vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5);
+  }
+  for (const PeriodicBox& b : {PeriodicBox(), box})
+    for (long big : {0L, 5L, 6L, 7L, 100L, 102L}) {
+      std::vector<Vec3> from = before, moved = after;
+      // Across the x boundary where periodic: 1.999 -> 0.004 is a move of 0.005 there, 1.995 here.
+      moved[big] = from[big] = Vec3(1.999, before[big].y(), before[big].z());
+      moved[big].x() = 0.004;
+      for (long first : {0L, 1L, 2L, 3L})
+        for (long last : {100L, 101L, 102L, 103L}) {
+          double expected = 0;
+          for (long k = first; k < last; ++k) expected = std::max(expected, b.nearest(moved[k] - from[k]).squaredNorm());
+          std::vector<double> got;
+          for (bool simd : {false, simd_loops_available()}) {
+            set_simd_loops(simd);
+            got.push_back(largest_move2(moved.data(), from.data(), b, first, last));
+          }
+          set_simd_loops(true);
+          for (double g : got) EXPECT_EQ(g, expected) << "largest at " << big << ", particles " << first << " to " << last;
+          if (big >= first && big < last) EXPECT_NEAR(std::sqrt(expected), b.any() ? 0.005 : 1.995, 1e-3);
+        }
+    }
+}
+
 TEST(ContactList, HistoryFollowsKeysWhereverStored) {
   // Ids 1, 2, 3, 5 in slots 4, 3, 2, 0: three candidates, in key order.
   const std::vector<FoundContact> first = {{1, 2, 4, 3}, {1, 5, 4, 0}, {2, 3, 3, 2}};

@@ -3,6 +3,11 @@
 #include <algorithm>
 #include <parallel/algorithm>
 #include <cmath>
+#include <cstring>
+
+#include <omp.h>
+
+#include "search/largest_move.hpp"
 
 namespace dem {
 
@@ -17,14 +22,12 @@ bool NeighbourList::needs_rebuild(const Particles& p, const PeriodicBox& box, co
   double dp2 = 0;
   int changed_ids = 0;
   const long n = static_cast<long>(p.size());
-  const bool periodic = box.any();
-  // Bitwise, not &&: no branch on the ids per particle (the loop is not vectorized: the periodic
-  // image has branches).
-#pragma omp parallel for schedule(static) reduction(max : dp2) reduction(| : changed_ids)
-  for (long k = 0; k < n; ++k) {
-    const Vec3 moved = p.x[k] - x_build_[k];
-    dp2 = std::max(dp2, (periodic ? box.nearest(moved) : moved).squaredNorm());
-    changed_ids |= p.id[k] != id_build_[k];
+#pragma omp parallel reduction(max : dp2) reduction(| : changed_ids)
+  {
+    const long threads = omp_get_num_threads(), t = omp_get_thread_num();
+    const long first = n * t / threads, last = n * (t + 1) / threads;
+    dp2 = largest_move2(p.x.data(), x_build_.data(), box, first, last);
+    changed_ids = last > first && std::memcmp(p.id.data() + first, id_build_.data() + first, (last - first) * sizeof(Index)) != 0;
   }
   if (changed_ids) return true;
   const double dp = std::sqrt(dp2);

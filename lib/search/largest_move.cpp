@@ -1,0 +1,77 @@
+#include "search/largest_move.hpp"
+
+#include <algorithm>
+#include <limits>
+
+#include "sim/simd.hpp"
+
+namespace dem {
+
+namespace {
+
+double one_by_one(const Vec3* x, const Vec3* x_build, const PeriodicBox& box, long first, long last) {
+  double largest = 0;
+  const bool periodic = box.any();
+  for (long k = first; k < last; ++k) {
+    const Vec3 moved = x[k] - x_build[k];
+    const Vec3 d = periodic ? box.nearest(moved) : moved;
+    largest = std::max(largest, (d.x() * d.x() + d.y() * d.y()) + d.z() * d.z());
+  }
+  return largest;
+}
+
+#ifdef DEM_SIMD_LOOPS
+// Four particles' positions are twelve consecutive doubles, three registers: [x0 y0 z0 x1],
+// [y1 z1 x2 y2], [z2 x3 y3 z3] (as in sim/motion.cpp).
+[[gnu::target("avx2")]] double four_at_a_time(const Vec3* x, const Vec3* x_build, const PeriodicBox& box, long first,
+                                              long last) {
+  // The period and its half along each register lane's axis; along an axis that is not periodic,
+  // a half period no separation exceeds, so d - L s = d - 0.
+  double length[12], half[12];
+  for (int q = 0; q < 12; ++q) {
+    const int axis = q % 3;
+    length[q] = box.axis[axis] ? box.length(axis) : 0.0;
+    half[q] = box.axis[axis] ? 0.5 * box.length(axis) : std::numeric_limits<double>::infinity();
+  }
+  __m256d L[3], up_limit[3], down_limit[3];
+  for (int q = 0; q < 3; ++q) {
+    L[q] = _mm256_loadu_pd(length + 4 * q);
+    up_limit[q] = _mm256_loadu_pd(half + 4 * q);
+    down_limit[q] = -up_limit[q];
+  }
+  const __m256d one = _mm256_set1_pd(1.0);
+  __m256d largest = _mm256_setzero_pd();
+  long k = first;
+  for (; k + 4 <= last; k += 4) {
+    __m256d s[3];  // squared coordinates of the displacements
+    for (int q = 0; q < 3; ++q) {
+      __m256d d = _mm256_loadu_pd(x[k].data() + 4 * q) - _mm256_loadu_pd(x_build[k].data() + 4 * q);
+      // PeriodicBox::nearest: d - L where d > L/2, d + L where d < -L/2.
+      const __m256d up = _mm256_and_pd(_mm256_cmp_pd(d, up_limit[q], _CMP_GT_OQ), one);
+      const __m256d down = _mm256_and_pd(_mm256_cmp_pd(d, down_limit[q], _CMP_LT_OQ), one);
+      d = d - L[q] * (up - down);
+      s[q] = d * d;
+    }
+    // Per particle: [dx0 dx1 dx2 dx3]^2 and so on, gathered from the three registers.
+    const __m256d a = s[0], b = s[1], c = s[2];
+    const __m256d sx = _mm256_permute4x64_pd(_mm256_blend_pd(_mm256_blend_pd(a, b, 0b0100), c, 0b0010), 0b01101100);
+    const __m256d sy = _mm256_permute4x64_pd(_mm256_blend_pd(_mm256_blend_pd(a, b, 0b1001), c, 0b0100), 0b10110001);
+    const __m256d sz = _mm256_permute4x64_pd(_mm256_blend_pd(_mm256_blend_pd(a, b, 0b0010), c, 0b1001), 0b11000110);
+    largest = _mm256_max_pd(largest, (sx + sy) + sz);
+  }
+  alignas(32) double lanes[4];
+  _mm256_store_pd(lanes, largest);
+  return std::max({lanes[0], lanes[1], lanes[2], lanes[3], one_by_one(x, x_build, box, k, last)});
+}
+#endif
+
+}  // namespace
+
+double largest_move2(const Vec3* x, const Vec3* x_build, const PeriodicBox& box, long first, long last) {
+#ifdef DEM_SIMD_LOOPS
+  if (simd_loops_on()) return four_at_a_time(x, x_build, box, first, last);
+#endif
+  return one_by_one(x, x_build, box, first, last);
+}
+
+}  // namespace dem
