@@ -5,10 +5,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
 
 #include "search/neighbour_list.hpp"
+#include "sim/force_loop.hpp"
 #include "sim/simulation.hpp"
 #include "walls/wall.hpp"
 
@@ -71,6 +73,33 @@ Vec3 surface_closest(const std::vector<Wall>& walls, const Vec3& p) {
 // of several elements, the force equals k_n (a - d) along the line from the surface's closest
 // point: one contact, never one per element. Tolerance 1e-9 relative: the contact point is
 // computed on different elements, which differ by round-off only.
+// A wall candidate farther from its element's plane than the radius does not touch; its direction
+// (closest point - centre) is still computed where the force loop reads it: a contact of the last
+// step (lost now; a new contact may take over its spring) and a bond (held in tension).
+TEST(MeshContact, DirectionsOfLostContactsAndBondsAreKept) {
+  const double a = 1e-3;
+  Particles p;
+  p.add(0, Vec3(0.9 * a, 0.5, 1.5 * a), a, 2500, 0);  // 1.5 a above the floor, 0.9 a from the side
+  const std::vector<Vec3> floor = box_face(Vec3(0, 0, 0), Vec3(1, 1, 1), 2, false);
+  const std::vector<Vec3> side = box_face(Vec3(0, 0, 0), Vec3(1, 1, 1), 0, false);
+  std::vector<WallGeometry> g(4);
+  for (int w = 0; w < 4; ++w) place_wall(Wall{"w", 0, w % 2 ? side : floor, {}}, 0, 1e-5, g[w]);
+  ContactList wc;
+  wc.resize(4);
+  for (int k = 0; k < 4; ++k) wc.slot_i[k] = 0, wc.slot_j[k] = k, wc.key_i[k] = 0, wc.key_j[k] = k;
+  wc.active = {1, 0, 0, 0};  // the floor was a contact at the last step
+  wc.bonded = {0, 0, 1, 0};  // the second floor holds a bond
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::vector<Vec3> to_wall(4, Vec3::Constant(nan));
+  std::vector<std::uint8_t> touching(4), take(4);
+  std::vector<int> order(4);
+  counted_wall_touches(p, g, wc, 0, 4, to_wall.data(), touching.data(), take.data(), order.data());
+  EXPECT_EQ(touching, (std::vector<std::uint8_t>{0, 1, 0, 1}));
+  EXPECT_NEAR((to_wall[0] - Vec3(0, 0, -1.5 * a)).norm(), 0, 1e-15) << "the lost contact's direction";
+  EXPECT_NEAR((to_wall[2] - Vec3(0, 0, -1.5 * a)).norm(), 0, 1e-15) << "the bond's direction";
+  EXPECT_NEAR((to_wall[1] - Vec3(-0.9 * a, 0, 0)).norm(), 0, 1e-15) << "the touch's direction";
+}
+
 TEST(MeshContact, FlatAndConvexSurfacesCountOneTouch) {
   const double a = 0.01, kn = 1e5;
   const std::vector<Wall> flat = split_square(0.1, 4);

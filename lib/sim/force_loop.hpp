@@ -108,8 +108,8 @@ void select_wall_contacts(const Vec3* to_wall, const std::uint8_t* touching, int
                           int* order);
 
 // The wall candidates [first, first + n) of one particle (a run of wall_runs): the vector to each
-// element's closest point (`to_wall`), whether it touches, and which touches count (`take`, by
-// select_wall_contacts). Shared by the force loop and the bond action, so that a bond is made
+// element's closest point (`to_wall`; left unset for a candidate that neither touches nor was a
+// contact or bond), whether it touches, and which touches count (`take`, by select_wall_contacts). Shared by the force loop and the bond action, so that a bond is made
 // exactly where the force loop sees a contact. The arrays hold n entries each.
 void counted_wall_touches(const Particles& p, const std::vector<WallGeometry>& geometry, const ContactList& wc, int first,
                           int n, Vec3* to_wall, std::uint8_t* touching, std::uint8_t* take, int* order);
