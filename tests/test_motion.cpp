@@ -2,12 +2,13 @@
 // by one, and both the definition of eq. 2.38-2.47 written out here, coordinate by coordinate:
 // v' = (a_r v + (m g + F + sum of the contacts summed here) dt / m) b_r, w' likewise with
 // I = 2/5 m a^2, x' = x + v' dt; held particles stop; the last particle whose state is not finite
-// is reported.
+// is reported; particles that leave a periodic box come back in at the other side.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "sim/motion.hpp"
@@ -23,6 +24,7 @@ namespace {
 // alone, some in groups with held particles.
 struct MotionCase {
   std::vector<Vec3> x, v, w, force, torque;
+  std::vector<Vec3i> image;
   std::vector<double> mass, radius;
   std::vector<std::uint8_t> fixed;
   std::vector<int> csr_start, csr_entry;
@@ -30,7 +32,9 @@ struct MotionCase {
   std::vector<ContactSum> sum;
   MotionConstants c{0.9995, 1 / 1.0005, 0.998, 1 / 1.002, 1e-5, Vec3(0.3, -0.2, -9.81)};
 
-  explicit MotionCase(long n) {
+  // Periodic: in x and z over [0, 1), every third particle about to leave through x = 1, every
+  // fifth through z = 0 (a step moves them 1e-6).
+  explicit MotionCase(long n, bool periodic = false) {
     std::mt19937_64 rng(5);
     std::uniform_real_distribution<double> u(-1, 1);
     const auto vec = [&](double s) { return Vec3(s * u(rng), s * u(rng), s * u(rng)); };
@@ -43,17 +47,25 @@ struct MotionCase {
     std::uniform_int_distribution<int> pair(0, pairs - 1), count(1, 4);
     for (long i = 0; i < n; ++i) {
       x.push_back(vec(1)), v.push_back(vec(0.1)), w.push_back(vec(10)), force.push_back(vec(1e-3)), torque.push_back(vec(1e-6));
+      image.push_back(Vec3i(1, -2, 3));
+      if (periodic) {
+        x.back() = x.back().cwiseAbs();
+        if (i % 3 == 0) x.back().x() = 1 - 5e-7, v.back().x() = 0.1;
+        if (i % 5 == 0) x.back().z() = 5e-7, v.back().z() = -0.1;
+      }
       mass.push_back(1e-5 * (1.5 + u(rng))), radius.push_back(1e-3 * (1.5 + u(rng)));
       fixed.push_back(i % 7 == 3);
       if (i % 5 == 0 || (i > 500 && i < 520))
         for (int e = count(rng); e > 0; --e) csr_entry.push_back(2 * pair(rng) + (u(rng) > 0));
       csr_start.push_back(static_cast<int>(csr_entry.size()));
     }
+    if (periodic) c.box.axis = {true, false, true}, c.box.lo = Vec3::Zero(), c.box.hi = Vec3::Ones();
   }
   MotionArrays arrays(bool any_fixed) {
     return {.x = x.data(),
             .v = v.data(),
             .w = w.data(),
+            .image = image.data(),
             .mass = mass.data(),
             .radius = radius.data(),
             .fixed = any_fixed ? fixed.data() : nullptr,
@@ -69,10 +81,11 @@ struct MotionCase {
 // What a step gives particle i, by the definition.
 struct Expected {
   Vec3 x, v, w;
+  Vec3i image;
 };
 Expected definition(const MotionCase& m, long i, bool any_fixed) {
-  if (any_fixed && m.fixed[i]) return {m.x[i], Vec3::Zero(), Vec3::Zero()};
-  Expected e;
+  if (any_fixed && m.fixed[i]) return {m.x[i], Vec3::Zero(), Vec3::Zero(), m.image[i]};
+  Expected e{Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), m.image[i]};
   for (int d = 0; d < 3; ++d) {
     double f = m.mass[i] * m.c.gravity[d] + m.force[i][d], t = m.torque[i][d];
     for (int q = m.csr_start[i]; q < m.csr_start[i + 1]; ++q) {
@@ -85,6 +98,9 @@ Expected definition(const MotionCase& m, long i, bool any_fixed) {
     e.v[d] = (m.c.ar * m.v[i][d] + f * (m.c.dt / m.mass[i])) * m.c.br;
     e.w[d] = (m.c.at * m.w[i][d] + t * (m.c.dt / inertia)) * m.c.bt;
     e.x[d] = m.x[i][d] + e.v[d] * m.c.dt;
+    if (!m.c.box.axis[d]) continue;
+    if (e.x[d] >= 1) e.x[d] -= 1, ++e.image[d];
+    else if (e.x[d] < 0) e.x[d] += 1, --e.image[d];
   }
   return e;
 }
@@ -95,31 +111,38 @@ const std::vector<int>& widths() {
 }
 
 TEST(Motion, FourAtATimeGiveTheDefinitionsBits) {
-  for (bool any_fixed : {false, true})
-    for (auto [first, last] : {std::pair<long, long>{0, 1003}, {1, 6}, {498, 523}, {5, 7}}) {
-      std::vector<MotionCase> runs;
-      for (int simd : widths()) {
-        MotionCase m(1003);
-        set_simd_loops(simd);
-        EXPECT_EQ(move_particles(m.arrays(any_fixed), m.c, first, last), -1);
-        runs.push_back(std::move(m));
-      }
-      set_simd_loops(true);
-      const MotionCase before(1003);
-      for (const MotionCase& m : runs)
-        for (long i = 0; i < 1003; ++i) {
-          const bool moved = i >= first && i < last;
-          const Expected e = moved ? definition(before, i, any_fixed) : Expected{before.x[i], before.v[i], before.w[i]};
-          ASSERT_EQ(m.x[i], e.x) << "particle " << i << (any_fixed ? " (held ones)" : "");
-          ASSERT_EQ(m.v[i], e.v) << "particle " << i;
-          ASSERT_EQ(m.w[i], e.w) << "particle " << i;
+  for (bool periodic : {false, true})
+    for (bool any_fixed : {false, true})
+      for (auto [first, last] : {std::pair<long, long>{0, 1003}, {1, 6}, {498, 523}, {5, 7}}) {
+        std::vector<MotionCase> runs;
+        for (int simd : widths()) {
+          MotionCase m(1003, periodic);
+          set_simd_loops(simd);
+          EXPECT_EQ(move_particles(m.arrays(any_fixed), m.c, first, last), -1);
+          runs.push_back(std::move(m));
         }
-      if (runs.size() == 2) {
-        EXPECT_TRUE(same_bits(runs[0].x, runs[1].x));
-        EXPECT_TRUE(same_bits(runs[0].v, runs[1].v));
-        EXPECT_TRUE(same_bits(runs[0].w, runs[1].w));
+        set_simd_loops(true);
+        const MotionCase before(1003, periodic);
+        int wrapped = 0;
+        for (const MotionCase& m : runs)
+          for (long i = 0; i < 1003; ++i) {
+            const bool moved = i >= first && i < last;
+            const Expected e =
+                moved ? definition(before, i, any_fixed) : Expected{before.x[i], before.v[i], before.w[i], before.image[i]};
+            const std::string what = "particle " + std::to_string(i) + (any_fixed ? ", held ones" : "") + (periodic ? ", periodic" : "");
+            ASSERT_EQ(m.x[i], e.x) << what;
+            ASSERT_EQ(m.v[i], e.v) << what;
+            ASSERT_EQ(m.w[i], e.w) << what;
+            ASSERT_EQ(m.image[i], e.image) << what;
+            wrapped += e.image != before.image[i];
+          }
+        if (periodic && last - first > 100) EXPECT_GT(wrapped, 200) << "the case must move particles across the boundaries";
+        if (runs.size() == 2) {
+          EXPECT_TRUE(same_bits(runs[0].x, runs[1].x));
+          EXPECT_TRUE(same_bits(runs[0].v, runs[1].v));
+          EXPECT_TRUE(same_bits(runs[0].w, runs[1].w));
+        }
       }
-    }
 }
 
 // A NaN, an infinity or a coordinate beyond the largest double after the step: the last such

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <limits>
 
 #include "sim/simd.hpp"
 
@@ -44,6 +45,7 @@ inline bool move_one(const MotionArrays& a, const MotionConstants& c, long i) {
   a.v[i] = (c.ar * a.v[i] + force * (c.dt / a.mass[i])) * c.br;
   a.w[i] = (c.at * a.w[i] + torque * (c.dt / sphere_inertia(a.mass[i], a.radius[i]))) * c.bt;
   a.x[i] += a.v[i] * c.dt;
+  if (c.box.any()) c.box.wrap(a.x[i], a.image[i]);
   return finite_state(a, i);
 }
 
@@ -71,6 +73,15 @@ long move_one_by_one(const MotionArrays& a, const MotionConstants& c, long first
   const Vec3& g = c.gravity;
   const __m256d gravity[3] = {_mm256_setr_pd(g.x(), g.y(), g.z(), g.x()), _mm256_setr_pd(g.y(), g.z(), g.x(), g.y()),
                               _mm256_setr_pd(g.z(), g.x(), g.y(), g.z())};
+  // The period by lane (an axis that is not periodic: no bound), to see which particles left it.
+  double lo[12], hi[12];
+  for (int q = 0; q < 12; ++q) {
+    const int axis = q % 3;
+    lo[q] = c.box.axis[axis] ? c.box.lo[axis] : -std::numeric_limits<double>::infinity();
+    hi[q] = c.box.axis[axis] ? c.box.hi[axis] : std::numeric_limits<double>::infinity();
+  }
+  __m256d period_lo[3], period_hi[3];
+  for (int q = 0; q < 3; ++q) period_lo[q] = _mm256_loadu_pd(lo + 4 * q), period_hi[q] = _mm256_loadu_pd(hi + 4 * q);
   long bad = -1;
   long i = first;
   for (; i + 4 <= last; i += 4) {
@@ -100,7 +111,7 @@ long move_one_by_one(const MotionArrays& a, const MotionConstants& c, long first
       for (int p = 0; p < 4; ++p) add_contacts_summed_here(a, i + p, f[p], t[p]);
       for (int q = 0; q < 3; ++q) force[q] = _mm256_load_pd(f[0].data() + 4 * q), torque[q] = _mm256_load_pd(t[0].data() + 4 * q);
     }
-    int broken = 0;
+    int broken = 0, left = 0;
     for (int q = 0; q < 3; ++q) {
       const __m256d vq = (ar * _mm256_loadu_pd(v + 4 * q) + force[q] * to_v[q]) * br;
       const __m256d wq = (at * _mm256_loadu_pd(w + 4 * q) + torque[q] * to_w[q]) * bt;
@@ -109,7 +120,10 @@ long move_one_by_one(const MotionArrays& a, const MotionConstants& c, long first
       // finite_state: |x + v + w| is NaN or above the largest double somewhere.
       const __m256d sum = _mm256_andnot_pd(sign, (xq + vq) + wq);
       broken |= _mm256_movemask_pd(_mm256_cmp_pd(sum, largest, _CMP_NLE_UQ));
+      left |= _mm256_movemask_pd(_mm256_or_pd(_mm256_cmp_pd(xq, period_hi[q], _CMP_GE_OQ), _mm256_cmp_pd(xq, period_lo[q], _CMP_LT_OQ)));
     }
+    if (left)  // PeriodicBox::wrap, which leaves the others as they are
+      for (long k = i; k < i + 4; ++k) c.box.wrap(a.x[k], a.image[k]);
     if (broken)  // which one
       for (long k = i; k < i + 4; ++k)
         if (!finite_state(a, k)) bad = k;

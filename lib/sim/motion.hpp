@@ -10,6 +10,7 @@
 #include "contact/contact_list.hpp"
 #include "core/types.hpp"
 #include "state/particles.hpp"
+#include "state/periodic.hpp"
 
 namespace dem {
 
@@ -18,6 +19,7 @@ namespace dem {
 struct MotionConstants {
   double ar, br, at, bt, dt;
   Vec3 gravity;
+  PeriodicBox box;  // a particle that leaves the period comes back in at the other side
 };
 
 // What the step reads and writes, as bare arrays (see CandidateArrays).
@@ -25,6 +27,7 @@ struct MotionArrays {
   Vec3* x;
   Vec3* v;
   Vec3* w;
+  Vec3i* image;  // periods crossed
   const double* mass;
   const double* radius;
   const std::uint8_t* fixed;  // null where no particle is held
@@ -38,7 +41,8 @@ struct MotionArrays {
   const ContactSum* sum;
 };
 
-// Particles [first, last): held ones stop, the others move. Returns the last particle whose new
+// Particles [first, last): held ones stop, the others move (and are wrapped into the period).
+// Returns the last particle whose new
 // state is not finite (NaN or Inf in x, v or w makes a coordinate of x + v + w NaN or Inf; so does
 // a sum beyond 1e308: a state as broken), or -1.
 long move_particles(const MotionArrays& a, const MotionConstants& c, long first, long last);

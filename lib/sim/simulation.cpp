@@ -282,11 +282,12 @@ void Simulation::index_contacts_per_particle() {
 void Simulation::integrate(bool any_fixed) {
   // eq. 2.38-2.47: v^{n+1/2} = (a v^{n-1/2} + acc dt) b, a = 1 - alpha dt/2, b = 1/(1 + alpha dt/2).
   const MotionConstants c{1 - params.alpha_r * dt / 2, 1 / (1 + params.alpha_r * dt / 2), 1 - params.alpha_theta * dt / 2,
-                          1 / (1 + params.alpha_theta * dt / 2), dt, params.gravity};
+                          1 / (1 + params.alpha_theta * dt / 2), dt, params.gravity, periodic};
   Particles& p = particles;
   const MotionArrays a{.x = p.x.data(),
                        .v = p.v.data(),
                        .w = p.w.data(),
+                       .image = p.image.data(),
                        .mass = p.mass.data(),
                        .radius = p.radius.data(),
                        .fixed = any_fixed ? p.fixed.data() : nullptr,
@@ -297,8 +298,6 @@ void Simulation::integrate(bool any_fixed) {
                        .active = pairs_.active.data(),
                        .sum = pairs_.sum.data()};
   const long n = static_cast<long>(p.size());
-  const PeriodicBox box = periodic;
-  Vec3i* const image = p.image.data();
   long bad = -1;
   // One pass: each particle's loads are summed and used at once (no per-particle force arrays to
   // write and read back: this loop is bound by memory traffic at 1e5 particles and more).
@@ -312,7 +311,7 @@ void Simulation::integrate(bool any_fixed) {
   // Each thread takes its own copies of these (firstprivate), kept in registers: shared, they are
   // read through OpenMP's record of shared variables, which the compiler reloaded after every store
   // (Eigen's stores are SSE intrinsics, which may alias anything): 10 % of this loop's time.
-#pragma omp parallel reduction(max : bad) firstprivate(a, c, box, image)
+#pragma omp parallel reduction(max : bad) firstprivate(a, c)
   {
     const long threads = omp_get_num_threads(), t = omp_get_thread_num();
     const long start = integrate_times_.run_start(t, threads), end = integrate_times_.run_start(t + 1, threads);
@@ -321,9 +320,6 @@ void Simulation::integrate(bool any_fixed) {
       const double tb = omp_get_wtime();
       const long lo = b * block, hi = std::min(n, lo + block);
       bad = std::max(bad, move_particles(a, c, lo, hi));
-      if (box.any())  // held particles stay where they were put
-        for (long i = lo; i < hi; ++i)
-          if (!(a.fixed && a.fixed[i])) box.wrap(a.x[i], image[i]);
       integrate_times_.record(b, omp_get_wtime() - tb);
     }
   }
