@@ -21,7 +21,7 @@ void Simulation::advance() {
   if (params.sort_every > 0 && step % params.sort_every == 0 && static_cast<long>(particles.size()) >= params.sort_min_particles)
     sort_storage();
   find_contacts();
-  const bool any_fixed = std::find(particles.fixed.begin(), particles.fixed.end(), 1) != particles.fixed.end();
+  const bool any_fixed = particles.any_fixed();
   const ForceLoopInput in{particles, materials, walls, wall_geometry_, wall_runs_, periodic, any_fixed, dt, params.keep_pair_results};
   if (indexed_block_ != params.load_block || indexed_reach_ != params.load_reach) index_contacts_per_particle();
   block_force_.resize(particles.size());
