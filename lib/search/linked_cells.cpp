@@ -97,17 +97,23 @@ void LinkedCells::find_near_pairs(const Particles& p, const PeriodicBox& box, st
   // Cells are searched in parallel, each thread into its own part.
   const int threads = omp_get_max_threads();
   parts_.resize(threads);
+  // The arrays' addresses in locals: a store into `mine` could change the vectors' own fields for
+  // the compiler, which then reloaded them for every pair tested.
+  const Vec3* const x = p.x.data();
+  const double* const radius = p.radius.data();
+  const std::uint8_t* const fixed = p.fixed.data();
+  const Index* const id = p.id.data();
 #pragma omp parallel num_threads(threads)
   {
     std::vector<FoundContact>& mine = parts_[omp_get_thread_num()];
     mine.clear();
-    auto test = [&](int a, int b) {
-      if (p.both_fixed(a, b)) return;
-      const double r = p.radius[a] + p.radius[b];
-      const double d2 = (periodic ? box.nearest(p.x[a] - p.x[b]) : Vec3(p.x[a] - p.x[b])).squaredNorm();
+    auto test = [&, x, radius, fixed, id](int a, int b) {
+      if (both_held(fixed[a], fixed[b])) return;
+      const double r = radius[a] + radius[b];
+      const double d2 = (periodic ? box.nearest(x[a] - x[b]) : Vec3(x[a] - x[b])).squaredNorm();
       if (d2 < (r + margin) * (r + margin)) {
-        if (p.id[a] < p.id[b]) mine.push_back({p.id[a], p.id[b], a, b});
-        else mine.push_back({p.id[b], p.id[a], b, a});
+        if (id[a] < id[b]) mine.push_back({id[a], id[b], a, b});
+        else mine.push_back({id[b], id[a], b, a});
       }
     };
     // A neighbour cell's coordinate along axis d, wrapped around a period; -1 when off the grid.
