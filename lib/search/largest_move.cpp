@@ -21,24 +21,19 @@ double one_by_one(const Vec3* x, const Vec3* x_build, const PeriodicBox& box, lo
 }
 
 #ifdef DEM_SIMD_LOOPS
-// Four particles' positions are twelve consecutive doubles, three registers: [x0 y0 z0 x1],
-// [y1 z1 x2 y2], [z2 x3 y3 z3] (as in sim/motion.cpp).
+// Four particles' positions in three registers (sim/simd.hpp).
 [[gnu::target("avx2")]] double four_at_a_time(const Vec3* x, const Vec3* x_build, const PeriodicBox& box, long first,
                                               long last) {
   // The period and its half along each register lane's axis; along an axis that is not periodic,
   // a half period no separation exceeds, so d - L s = d - 0.
-  double length[12], half[12];
-  for (int q = 0; q < 12; ++q) {
-    const int axis = q % 3;
-    length[q] = box.axis[axis] ? box.length(axis) : 0.0;
-    half[q] = box.axis[axis] ? 0.5 * box.length(axis) : std::numeric_limits<double>::infinity();
+  Vec3 length, half;
+  for (int axis = 0; axis < 3; ++axis) {
+    length[axis] = box.axis[axis] ? box.length(axis) : 0.0;
+    half[axis] = box.axis[axis] ? 0.5 * box.length(axis) : std::numeric_limits<double>::infinity();
   }
   __m256d L[3], up_limit[3], down_limit[3];
-  for (int q = 0; q < 3; ++q) {
-    L[q] = _mm256_loadu_pd(length + 4 * q);
-    up_limit[q] = _mm256_loadu_pd(half + 4 * q);
-    down_limit[q] = -up_limit[q];
-  }
+  simd::by_axis(length, L), simd::by_axis(half, up_limit);
+  for (int q = 0; q < 3; ++q) down_limit[q] = -up_limit[q];
   const __m256d one = _mm256_set1_pd(1.0);
   __m256d largest = _mm256_setzero_pd();
   long k = first;

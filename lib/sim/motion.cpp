@@ -57,31 +57,23 @@ long move_one_by_one(const MotionArrays& a, const MotionConstants& c, long first
 }
 
 #ifdef DEM_SIMD_LOOPS
-// Four particles' vectors are twelve consecutive doubles, three registers: [x0 y0 z0 x1],
-// [y1 z1 x2 y2], [z2 x3 y3 z3]. A per-particle factor s is spread to match: [s0 s0 s0 s1],
-// [s1 s1 s2 s2], [s2 s3 s3 s3]; gravity to [gx gy gz gx], [gy gz gx gy], [gz gx gy gz].
-[[gnu::target("avx2")]] inline void spread(__m256d s, __m256d out[3]) {
-  out[0] = _mm256_permute4x64_pd(s, 0b01000000);
-  out[1] = _mm256_permute4x64_pd(s, 0b10100101);
-  out[2] = _mm256_permute4x64_pd(s, 0b11111110);
-}
+using simd::by_axis;
+using simd::by_particle;
 
 [[gnu::target("avx2")]] long move_four_at_a_time(const MotionArrays& a, const MotionConstants& c, long first, long last) {
   const __m256d ar = _mm256_set1_pd(c.ar), br = _mm256_set1_pd(c.br), at = _mm256_set1_pd(c.at), bt = _mm256_set1_pd(c.bt);
   const __m256d dt = _mm256_set1_pd(c.dt), two_fifths = _mm256_set1_pd(0.4), largest = _mm256_set1_pd(DBL_MAX);
   const __m256d sign = _mm256_set1_pd(-0.0);
-  const Vec3& g = c.gravity;
-  const __m256d gravity[3] = {_mm256_setr_pd(g.x(), g.y(), g.z(), g.x()), _mm256_setr_pd(g.y(), g.z(), g.x(), g.y()),
-                              _mm256_setr_pd(g.z(), g.x(), g.y(), g.z())};
-  // The period by lane (an axis that is not periodic: no bound), to see which particles left it.
-  double lo[12], hi[12];
-  for (int q = 0; q < 12; ++q) {
-    const int axis = q % 3;
-    lo[q] = c.box.axis[axis] ? c.box.lo[axis] : -std::numeric_limits<double>::infinity();
-    hi[q] = c.box.axis[axis] ? c.box.hi[axis] : std::numeric_limits<double>::infinity();
+  // Four particles' vectors in three registers (sim/simd.hpp), and what they are compared with:
+  // the period (an axis that is not periodic: no bound), to see which particles left it.
+  __m256d gravity[3], period_lo[3], period_hi[3];
+  by_axis(c.gravity, gravity);
+  Vec3 lo, hi;
+  for (int axis = 0; axis < 3; ++axis) {
+    lo[axis] = c.box.axis[axis] ? c.box.lo[axis] : -std::numeric_limits<double>::infinity();
+    hi[axis] = c.box.axis[axis] ? c.box.hi[axis] : std::numeric_limits<double>::infinity();
   }
-  __m256d period_lo[3], period_hi[3];
-  for (int q = 0; q < 3; ++q) period_lo[q] = _mm256_loadu_pd(lo + 4 * q), period_hi[q] = _mm256_loadu_pd(hi + 4 * q);
+  by_axis(lo, period_lo), by_axis(hi, period_hi);
   long bad = -1;
   long i = first;
   for (; i + 4 <= last; i += 4) {
@@ -98,9 +90,9 @@ long move_one_by_one(const MotionArrays& a, const MotionConstants& c, long first
     double* const w = a.w[i].data();
     const __m256d m = _mm256_loadu_pd(a.mass + i), r = _mm256_loadu_pd(a.radius + i);
     __m256d mass[3], to_v[3], to_w[3], force[3], torque[3];
-    spread(m, mass);
-    spread(dt / m, to_v);                             // dt / m
-    spread(dt / (((two_fifths * m) * r) * r), to_w);  // dt / I, I = sphere_inertia(m, a)
+    by_particle(m, mass);
+    by_particle(dt / m, to_v);                             // dt / m
+    by_particle(dt / (((two_fifths * m) * r) * r), to_w);  // dt / I, I = sphere_inertia(m, a)
     for (int q = 0; q < 3; ++q) {
       force[q] = mass[q] * gravity[q] + _mm256_loadu_pd(a.force[i].data() + 4 * q);
       torque[q] = _mm256_loadu_pd(a.torque[i].data() + 4 * q);

@@ -14,6 +14,8 @@ void set_simd_loops(bool on); // on unless DEM_SIMD=off; tests turn it off to co
 
 #if defined(__x86_64__)
 #include <immintrin.h>
+
+#include "core/types.hpp"
 #define DEM_SIMD_LOOPS 1
 
 namespace dem::simd {
@@ -27,6 +29,21 @@ namespace dem::simd {
   return _mm_mask_i32gather_epi32(_mm_setzero_si128(), base, index, _mm_set1_epi32(-1), 4);
 }
 [[gnu::target("avx2")]] inline __m128i times3(__m128i index) { return _mm_add_epi32(index, _mm_add_epi32(index, index)); }
+
+// Four particles' vectors (Vec3) are twelve consecutive doubles: three registers [x0 y0 z0 x1],
+// [y1 z1 x2 y2], [z2 x3 y3 z3]. A value per axis laid out alike: [ax ay az ax], [ay az ax ay],
+// [az ax ay az].
+[[gnu::target("avx2")]] inline void by_axis(const Vec3& a, __m256d out[3]) {
+  out[0] = _mm256_setr_pd(a.x(), a.y(), a.z(), a.x());
+  out[1] = _mm256_setr_pd(a.y(), a.z(), a.x(), a.y());
+  out[2] = _mm256_setr_pd(a.z(), a.x(), a.y(), a.z());
+}
+// A value per particle (the four lanes of s) laid out alike: [s0 s0 s0 s1], [s1 s1 s2 s2], [s2 s3 s3 s3].
+[[gnu::target("avx2")]] inline void by_particle(__m256d s, __m256d out[3]) {
+  out[0] = _mm256_permute4x64_pd(s, 0b01000000);
+  out[1] = _mm256_permute4x64_pd(s, 0b10100101);
+  out[2] = _mm256_permute4x64_pd(s, 0b11111110);
+}
 
 }  // namespace dem::simd
 #endif
