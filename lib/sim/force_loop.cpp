@@ -145,7 +145,7 @@ double pair_forces(const ForceLoopInput& in, ContactList& pc, BlockLoads& out) {
         const int reach_end = static_cast<int>(std::min(slots, (b + phases) * out.block));
         // Phase 0 zeroes every block it writes: the phases after it write no other. (memset: all
         // bits zero is +0.0; element by element, the vectors' addresses were reloaded each time.)
-        if (phase == 0) {
+        if (phase == 0 && !out.zeroed) {
           const std::size_t bytes = (reach_end - b * out.block) * sizeof(Vec3);
           std::memset(static_cast<void*>(out.force.data() + b * out.block), 0, bytes);
           std::memset(static_cast<void*>(out.torque.data() + b * out.block), 0, bytes);

@@ -48,6 +48,8 @@ struct BlockLoads {
   long epoch;                     // this force loop's: unlike any before it
   std::vector<Vec3>& force;       // per slot: sum of those contact forces [N]
   std::vector<Vec3>& torque;      // per slot: sum of a n x f_t, eq. 2.33-2.34 [N m]
+  bool zeroed;                    // force and torque hold zeros already (the last integration
+                                  // cleared them as it read them), else the loop zeroes them
 };
 
 // Which instantiation runs: "cundall" (also any law while no contact is bonded: without bonds

@@ -36,11 +36,12 @@ inline bool finite_state(const MotionArrays& a, long i) {
 // new state is not finite.
 inline bool move_one(const MotionArrays& a, const MotionConstants& c, long i) {
   if (a.fixed && a.fixed[i]) {
-    a.v[i] = a.w[i] = Vec3::Zero();
+    a.v[i] = a.w[i] = a.force[i] = a.torque[i] = Vec3::Zero();
     return true;
   }
   Vec3 force = a.mass[i] * c.gravity + a.force[i];
   Vec3 torque = a.torque[i];
+  a.force[i] = a.torque[i] = Vec3::Zero();
   add_contacts_summed_here(a, i, force, torque);
   a.v[i] = (c.ar * a.v[i] + force * (c.dt / a.mass[i])) * c.br;
   a.w[i] = (c.at * a.w[i] + torque * (c.dt / sphere_inertia(a.mass[i], a.radius[i]))) * c.bt;
@@ -93,9 +94,11 @@ using simd::by_particle;
     by_particle(m, mass);
     by_particle(dt / m, to_v);                             // dt / m
     by_particle(dt / (((two_fifths * m) * r) * r), to_w);  // dt / I, I = sphere_inertia(m, a)
+    const __m256d zero = _mm256_setzero_pd();
     for (int q = 0; q < 3; ++q) {
       force[q] = mass[q] * gravity[q] + _mm256_loadu_pd(a.force[i].data() + 4 * q);
       torque[q] = _mm256_loadu_pd(a.torque[i].data() + 4 * q);
+      _mm256_storeu_pd(a.force[i].data() + 4 * q, zero), _mm256_storeu_pd(a.torque[i].data() + 4 * q, zero);
     }
     if (a.csr_start[i + 4] != a.csr_start[i]) {  // some have contacts summed here: added one by one
       alignas(32) Vec3 f[4], t[4];

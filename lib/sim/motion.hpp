@@ -31,8 +31,8 @@ struct MotionArrays {
   const double* mass;
   const double* radius;
   const std::uint8_t* fixed;  // null where no particle is held
-  const Vec3* force;          // the force loop's sums (BlockLoads)
-  const Vec3* torque;
+  Vec3* force;                // the force loop's sums (BlockLoads), zeroed once read
+  Vec3* torque;
   // The contacts summed here (Simulation::index_contacts_per_particle): particle i's are entries
   // csr_start[i] to csr_start[i + 1] of csr_entry, 2k for pair k seen from its i, 2k + 1 from its j.
   const int* csr_start;
@@ -41,7 +41,8 @@ struct MotionArrays {
   const ContactSum* sum;
 };
 
-// Particles [first, last): held ones stop, the others move (and are wrapped into the period).
+// Particles [first, last): held ones stop, the others move (and are wrapped into the period);
+// the force loop's sums of all of them are zeroed for the next step.
 // Returns the last particle whose new
 // state is not finite (NaN or Inf in x, v or w makes a coordinate of x + v + w NaN or Inf; so does
 // a sum beyond 1e308: a state as broken), or -1.

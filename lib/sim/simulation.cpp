@@ -24,10 +24,17 @@ void Simulation::advance() {
   const bool any_fixed = particles.any_fixed();
   const ForceLoopInput in{particles, materials, walls, wall_geometry_, wall_runs_, periodic, any_fixed, dt, params.keep_pair_results};
   if (indexed_block_ != params.load_block || indexed_reach_ != params.load_reach) index_contacts_per_particle();
-  block_force_.resize(particles.size());
-  block_torque_.resize(particles.size());
+  if (block_force_.size() != particles.size()) {
+    block_force_.resize(particles.size());
+    block_torque_.resize(particles.size());
+    loads_zeroed_ = false;
+  }
+  // The last integration zeroed the loads as it read them (saves the force loop a pass over
+  // 48 bytes per particle); any other way here (the first step, a failed step, a new particle
+  // count) the force loop zeroes them.
   BlockLoads loads{params.load_block, params.load_reach, block_first_, force_times_, block_done_, ++force_epoch_,
-                   block_force_, block_torque_};
+                   block_force_, block_torque_, loads_zeroed_};
+  loads_zeroed_ = false;
   const double worst_overlap = compute_contact_forces(in, choose_force_variant(*this), pairs_, walls_, loads);
   pair_results_kept_ = params.keep_pair_results;
   contacts_modified();
@@ -323,6 +330,7 @@ void Simulation::integrate(bool any_fixed) {
       integrate_times_.record(b, omp_get_wtime() - tb);
     }
   }
+  loads_zeroed_ = true;  // move_particles cleared every particle's
   if (bad >= 0) {
     const Particles& p = particles;
     std::ostringstream m;

@@ -161,6 +161,7 @@ class Simulation {
   std::vector<long> block_done_;  // per load block, the epoch of the force loop that last summed it
   long force_epoch_ = 0;          // force loops run (BlockLoads::epoch)
   std::vector<Vec3> block_force_, block_torque_;  // per slot, the sums of the force loop (BlockLoads)
+  bool loads_zeroed_ = false;  // integrate() cleared block_force_ and block_torque_ as it read them
   std::vector<int> wall_runs_;  // first wall candidate of each particle, then the end
 };
 
