@@ -1,8 +1,10 @@
 #pragma once
-// The force loop's four-wide versions (AVX2, where the processor has it): whether they run, and
-// the gathers they share. Each does per contact the same operations in the same order as the
+// The four-wide versions (AVX2, where the processor has it) of the force loop, the integration
+// (sim/motion.cpp) and the rebuild check (search/largest_move.cpp): whether they run, and what
+// they share. Each does per contact or particle the same operations in the same order as the
 // plain loop it stands for, so both give the same bits (IEEE 754 rounds each operation alike in a
 // vector lane and in a scalar register; no fused multiply-add is enabled, so none is contracted).
+// (AVX-512, eight lanes, was tried for the law: 15 % slower on an Intel Xeon, same bits.)
 
 namespace dem {
 
