@@ -24,27 +24,22 @@ double one_by_one(const Vec3* x, const Vec3* x_build, const PeriodicBox& box, lo
 // Four particles' positions in three registers (sim/simd.hpp).
 [[gnu::target("avx2")]] double four_at_a_time(const Vec3* x, const Vec3* x_build, const PeriodicBox& box, long first,
                                               long last) {
-  // The period and its half along each register lane's axis; along an axis that is not periodic,
-  // a half period no separation exceeds, so d - L s = d - 0.
+  // The period and its half along each register lane's axis (simd::nearest_image: an axis that is
+  // not periodic has L = 0 and L/2 = infinity).
   Vec3 length, half;
   for (int axis = 0; axis < 3; ++axis) {
     length[axis] = box.axis[axis] ? box.length(axis) : 0.0;
     half[axis] = box.axis[axis] ? 0.5 * box.length(axis) : std::numeric_limits<double>::infinity();
   }
-  __m256d L[3], up_limit[3], down_limit[3];
-  simd::by_axis(length, L), simd::by_axis(half, up_limit);
-  for (int q = 0; q < 3; ++q) down_limit[q] = -up_limit[q];
-  const __m256d one = _mm256_set1_pd(1.0);
+  __m256d L[3], half_L[3];
+  simd::by_axis(length, L), simd::by_axis(half, half_L);
   __m256d largest = _mm256_setzero_pd();
   long k = first;
   for (; k + 4 <= last; k += 4) {
     __m256d s[3];  // squared coordinates of the displacements
     for (int q = 0; q < 3; ++q) {
-      __m256d d = _mm256_loadu_pd(x[k].data() + 4 * q) - _mm256_loadu_pd(x_build[k].data() + 4 * q);
-      // PeriodicBox::nearest: d - L where d > L/2, d + L where d < -L/2.
-      const __m256d up = _mm256_and_pd(_mm256_cmp_pd(d, up_limit[q], _CMP_GT_OQ), one);
-      const __m256d down = _mm256_and_pd(_mm256_cmp_pd(d, down_limit[q], _CMP_LT_OQ), one);
-      d = d - L[q] * (up - down);
+      const __m256d moved = _mm256_loadu_pd(x[k].data() + 4 * q) - _mm256_loadu_pd(x_build[k].data() + 4 * q);
+      const __m256d d = simd::nearest_image(moved, L[q], half_L[q]);
       s[q] = d * d;
     }
     // Per particle: [dx0 dx1 dx2 dx3]^2 and so on, gathered from the three registers.

@@ -37,15 +37,6 @@ constexpr std::array<std::array<int, 8>, 16> compress_ints() {
 alignas(32) constexpr std::array<std::array<int, 8>, 16> kCompressDoubles = compress_doubles();
 alignas(32) constexpr std::array<std::array<int, 8>, 16> kCompressInts = compress_ints();
 
-// d - L s with s = +1 where d > L/2, -1 where d < -L/2, else 0: PeriodicBox::nearest's d - L or
-// d + L or d, to the bit (L s is exactly +-L or 0), four lanes at once.
-[[gnu::target("avx2")]] inline __m256d nearest_image(__m256d d, double length) {
-  const __m256d L = _mm256_set1_pd(length), half = _mm256_set1_pd(0.5 * length), minus_half = _mm256_set1_pd(-(0.5 * length));
-  const __m256d up = _mm256_and_pd(_mm256_cmp_pd(d, half, _CMP_GT_OQ), _mm256_set1_pd(1.0));
-  const __m256d down = _mm256_and_pd(_mm256_cmp_pd(d, minus_half, _CMP_LT_OQ), _mm256_set1_pd(1.0));
-  return _mm256_sub_pd(d, _mm256_mul_pd(L, _mm256_sub_pd(up, down)));
-}
-
 // Four candidates at a time: the positions gathered (x is 3 doubles per particle), the separation
 // and the touch test in the plain loop's order of operations ((dx^2 + dy^2) + dz^2 < r^2), the
 // contacts moved to the front of the lanes and stored; the last one to three by the plain loop.
@@ -76,9 +67,9 @@ template <bool Periodic, bool Fixed>
     __m256d dy = _mm256_sub_pd(gather(x + 1, j3), gather(x + 1, i3));
     __m256d dz = _mm256_sub_pd(gather(x + 2, j3), gather(x + 2, i3));
     if constexpr (Periodic) {
-      if (box.axis[0]) dx = nearest_image(dx, box.length(0));
-      if (box.axis[1]) dy = nearest_image(dy, box.length(1));
-      if (box.axis[2]) dz = nearest_image(dz, box.length(2));
+      if (box.axis[0]) dx = simd::nearest_image(dx, _mm256_set1_pd(box.length(0)), _mm256_set1_pd(0.5 * box.length(0)));
+      if (box.axis[1]) dy = simd::nearest_image(dy, _mm256_set1_pd(box.length(1)), _mm256_set1_pd(0.5 * box.length(1)));
+      if (box.axis[2]) dz = simd::nearest_image(dz, _mm256_set1_pd(box.length(2)), _mm256_set1_pd(0.5 * box.length(2)));
     }
     const __m256d r = _mm256_add_pd(gather(a.radius, i), gather(a.radius, j));
     const __m256d d2 = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)), _mm256_mul_pd(dz, dz));

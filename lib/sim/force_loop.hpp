@@ -111,17 +111,18 @@ void select_wall_contacts(const Vec3* to_wall, const std::uint8_t* touching, int
 
 // The wall candidates [first, first + n) of one particle (a run of wall_runs): the vector to each
 // element's closest point (`to_wall`; left unset for a candidate that neither touches nor was a
-// contact or bond), whether it touches, and which touches count (`take`, by select_wall_contacts). Shared by the force loop and the bond action, so that a bond is made
+// contact or bond), whether it touches, and which touches count (`take`, by
+// select_wall_contacts). Shared by the force loop and the bond action, so that a bond is made
 // exactly where the force loop sees a contact. The arrays hold n entries each.
 void counted_wall_touches(const Particles& p, const std::vector<WallGeometry>& geometry, const ContactList& wc, int first,
                           int n, Vec3* to_wall, std::uint8_t* touching, std::uint8_t* take, int* order);
 
 // For every candidate of `pairs` and `walls`: decides whether it is a contact (`active`: touching,
 // or holding by a bond), and if so fills .normal and .sum (of pair contacts summed in `loads`, only
-// where in.keep_pair_results) and updates its history; a candidate
-// that is no contact gets a zero .sum and loses its spring. Pair contacts within a block or between
-// blocks at most loads.reach apart, and wall contacts, are also summed into `loads`. Returns the largest overlap
-// relative to the smaller radius of its contact.
+// where in.keep_pair_results) and updates its history; a candidate that is no contact gets a zero
+// .sum and loses its spring. Pair contacts within a block or between blocks at most loads.reach
+// apart, and wall contacts, are also summed into `loads`. Returns the largest overlap relative to
+// the smaller radius of its contact.
 double compute_contact_forces(const ForceLoopInput& in, ForceVariant variant, ContactList& pairs, ContactList& walls,
                               BlockLoads& loads);
 

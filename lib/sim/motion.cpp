@@ -64,7 +64,7 @@ using simd::by_particle;
 [[gnu::target("avx2")]] long move_four_at_a_time(const MotionArrays& a, const MotionConstants& c, long first, long last) {
   const __m256d ar = _mm256_set1_pd(c.ar), br = _mm256_set1_pd(c.br), at = _mm256_set1_pd(c.at), bt = _mm256_set1_pd(c.bt);
   const __m256d dt = _mm256_set1_pd(c.dt), two_fifths = _mm256_set1_pd(0.4), largest = _mm256_set1_pd(DBL_MAX);
-  const __m256d sign = _mm256_set1_pd(-0.0);
+  const __m256d sign = _mm256_set1_pd(-0.0), zero = _mm256_setzero_pd();
   // Four particles' vectors in three registers (sim/simd.hpp), and what they are compared with:
   // the period (an axis that is not periodic: no bound), to see which particles left it.
   __m256d gravity[3], period_lo[3], period_hi[3];
@@ -94,7 +94,6 @@ using simd::by_particle;
     by_particle(m, mass);
     by_particle(dt / m, to_v);                             // dt / m
     by_particle(dt / (((two_fifths * m) * r) * r), to_w);  // dt / I, I = sphere_inertia(m, a)
-    const __m256d zero = _mm256_setzero_pd();
     for (int q = 0; q < 3; ++q) {
       force[q] = mass[q] * gravity[q] + _mm256_loadu_pd(a.force[i].data() + 4 * q);
       torque[q] = _mm256_loadu_pd(a.torque[i].data() + 4 * q);

@@ -42,10 +42,9 @@ struct MotionArrays {
 };
 
 // Particles [first, last): held ones stop, the others move (and are wrapped into the period);
-// the force loop's sums of all of them are zeroed for the next step.
-// Returns the last particle whose new
-// state is not finite (NaN or Inf in x, v or w makes a coordinate of x + v + w NaN or Inf; so does
-// a sum beyond 1e308: a state as broken), or -1.
+// the force loop's sums of all of them are zeroed for the next step. Returns the last particle
+// whose new state is not finite (NaN or Inf in x, v or w makes a coordinate of x + v + w NaN or
+// Inf; so does a sum beyond 1e308: a state as broken), or -1.
 long move_particles(const MotionArrays& a, const MotionConstants& c, long first, long last);
 
 }  // namespace dem

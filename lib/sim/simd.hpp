@@ -32,6 +32,16 @@ namespace dem::simd {
 }
 [[gnu::target("avx2")]] inline __m128i times3(__m128i index) { return _mm_add_epi32(index, _mm_add_epi32(index, index)); }
 
+// d - L s with s = +1 where d > L/2, -1 where d < -L/2, else 0, lane by lane: PeriodicBox::nearest's
+// d - L or d + L or d, to the bit (L s is exactly +-L or 0). A lane with L = 0 and L/2 = infinity
+// (an axis that is not periodic) keeps d.
+[[gnu::target("avx2")]] inline __m256d nearest_image(__m256d d, __m256d L, __m256d half_L) {
+  const __m256d one = _mm256_set1_pd(1.0);
+  const __m256d up = _mm256_and_pd(_mm256_cmp_pd(d, half_L, _CMP_GT_OQ), one);
+  const __m256d down = _mm256_and_pd(_mm256_cmp_pd(d, -half_L, _CMP_LT_OQ), one);
+  return d - L * (up - down);
+}
+
 // Four particles' vectors (Vec3) are twelve consecutive doubles: three registers [x0 y0 z0 x1],
 // [y1 z1 x2 y2], [z2 x3 y3 z3]. A value per axis laid out alike: [ax ay az ax], [ay az ax ay],
 // [az ax ay az].
