@@ -31,6 +31,10 @@ long LinkedCells::cell_coord(double x, int d) const {
   return std::clamp(static_cast<long>(std::floor((x - lo_[d]) / edge_[d])), 0L, dims_[d] - 1);
 }
 
+long LinkedCells::particle_cell_coord(double x, int d) const {
+  return std::clamp(static_cast<long>(std::floor((x - lo_[d]) / edge_[d])), pad_[d], dims_[d] - 1 - pad_[d]);
+}
+
 void LinkedCells::bin(const Particles& p, const PeriodicBox& box, double margin) {
   const int n = static_cast<int>(p.size());
   Vec3 lo = n ? p.x[0] : Vec3::Zero(), hi = lo;
@@ -61,6 +65,13 @@ void LinkedCells::bin(const Particles& p, const PeriodicBox& box, double margin)
     if (total <= 2L * n + 27) break;
     edge *= 1.26;
   }
+  // Along an axis that is not periodic, one empty cell more at each end: every particle's cell then
+  // has all 26 neighbours on the grid, found by a fixed offset of its index (find_near_pairs).
+  for (int d = 0; d < 3; ++d) {
+    pad_[d] = box.axis[d] ? 0 : 1;
+    lo_[d] -= pad_[d] * edge_[d];
+    dims[d] += 2 * pad_[d];
+  }
   for (int d = 0; d < 3; ++d)
     if (box.axis[d] && dims[d] < 3) {
       std::ostringstream m;
@@ -74,7 +85,8 @@ void LinkedCells::bin(const Particles& p, const PeriodicBox& box, double margin)
   cell_of_.resize(n);
 #pragma omp parallel for schedule(static)
   for (int k = 0; k < n; ++k)
-    cell_of_[k] = static_cast<int>((cell_coord(p.x[k][2], 2) * dims[1] + cell_coord(p.x[k][1], 1)) * dims[0] + cell_coord(p.x[k][0], 0));
+    cell_of_[k] = static_cast<int>((particle_cell_coord(p.x[k][2], 2) * dims[1] + particle_cell_coord(p.x[k][1], 1)) * dims[0] +
+                                   particle_cell_coord(p.x[k][0], 0));
   cell_first_.assign(ncell + 1, 0);
   for (int k = 0; k < n; ++k) ++cell_first_[cell_of_[k] + 1];
   for (long c = 0; c < ncell; ++c) cell_first_[c + 1] += cell_first_[c];
@@ -121,12 +133,27 @@ void LinkedCells::find_near_pairs(const Particles& p, const PeriodicBox& box, st
       if (c >= 0 && c < dims[d]) return c;
       return box.axis[d] ? (c + dims[d]) % dims[d] : -1L;
     };
+    // Without periodic axes every particle's cell lies inside the padding (bin): its neighbours are
+    // at fixed offsets of its index. (Their coordinates, checked against the grid per neighbour,
+    // were most of the search's time where cells hold a particle or two.)
+    long offset[13];
+    for (int h = 0; h < 13; ++h) offset[h] = (kHalf[h][2] * dims[1] + kHalf[h][1]) * dims[0] + kHalf[h][0];
+    const int* const cell_first = cell_first_.data();
+    const int* const cell_slots = cell_slots_.data();
 #pragma omp for schedule(dynamic, 64)
     for (long c = 0; c < ncell; ++c) {
-      const int first = cell_first_[c], last = cell_first_[c + 1];
+      const int first = cell_first[c], last = cell_first[c + 1];
       if (first == last) continue;
       for (int m = first; m < last; ++m)
-        for (int o = m + 1; o < last; ++o) test(cell_slots_[m], cell_slots_[o]);
+        for (int o = m + 1; o < last; ++o) test(cell_slots[m], cell_slots[o]);
+      if (!periodic) {
+        for (const long off : offset) {
+          const int other_first = cell_first[c + off], other_last = cell_first[c + off + 1];
+          for (int m = first; m < last; ++m)
+            for (int o = other_first; o < other_last; ++o) test(cell_slots[m], cell_slots[o]);
+        }
+        continue;
+      }
       const long cx = c % dims[0], cy = (c / dims[0]) % dims[1], cz = c / (dims[0] * dims[1]);
       for (const auto& h : kHalf) {
         const long x = along(cx + h[0], 0), y = along(cy + h[1], 1), z = along(cz + h[2], 2);

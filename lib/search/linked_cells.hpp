@@ -42,7 +42,8 @@ class LinkedCells {
 
  private:
   void bin(const Particles& p, const PeriodicBox& box, double margin);  // the grid and each cell's slots
-  long cell_coord(double x, int d) const;
+  long cell_coord(double x, int d) const;           // any point: clamped to the grid
+  long particle_cell_coord(double x, int d) const;  // a particle's: clamped inside the padding
 
   std::vector<int> cell_of_;     // per slot, its cell
   std::vector<int> cell_first_;  // per cell, where its slots start in cell_slots_ (+ the end)
@@ -50,7 +51,8 @@ class LinkedCells {
   Vec3 lo_ = Vec3::Zero();
   Vec3 edge_ = Vec3::Zero();  // per axis: a period is divided into whole cells
   double rmax_ = 0;
-  long dims_[3] = {0, 0, 0};
+  long dims_[3] = {0, 0, 0};  // cells per axis, with the padding
+  long pad_[3] = {0, 0, 0};   // per axis: 1 where it is not periodic (an empty cell at each end)
   std::vector<std::vector<FoundContact>> parts_;  // per thread, then joined
 };
 
