@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "core/error.hpp"
 #include "generation/fill.hpp"
 #include "sim/find_contacts.hpp"
 #include "sim/simd.hpp"
@@ -196,6 +197,41 @@ TEST(SimdLoops, LawEndsARunWithThePlainLoopsBits) {
   EXPECT_TRUE(same_bits(plain.particles.w, wide.particles.w));
   EXPECT_TRUE(same_bits(plain.pair_contacts().spring, wide.pair_contacts().spring));
   EXPECT_TRUE(same_bits(plain.pair_contacts().bonded, wide.pair_contacts().bonded));
+}
+
+// The law also returns the largest overlap relative to the smaller radius, which stops a run past
+// simulation.max_overlap. Its definition, max over touching pairs of (a_i + a_j - |x_j - x_i|) /
+// min(a_i, a_j) through the nearest image, here lies in a pair of the jammed law_scene (the walls'
+// overlaps are smaller): a limit just under it stops the first step, one just above it does not,
+// in both versions. (The margin 1e-9 is far above the rounding of one division, far below the gap
+// between the largest overlap and the next.)
+TEST(SimdLoops, LawFindsTheLargestOverlapOfTheDefinition) {
+  if (!simd_loops_available()) GTEST_SKIP() << "no AVX2 on this processor: only the plain loops run";
+  const Simulation scene = law_scene();
+  const Particles& p = scene.particles;
+  double largest = 0, next = 0, walls = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    for (std::size_t j = i + 1; j < p.size(); ++j) {
+      if (p.fixed[i] && p.fixed[j]) continue;
+      const double u = (p.radius[i] + p.radius[j] - scene.periodic.nearest(p.x[j] - p.x[i]).norm()) / std::min(p.radius[i], p.radius[j]);
+      if (u > largest) next = largest, largest = u;
+      else next = std::max(next, u);
+    }
+    const double L = 0.02;  // law_scene's floor and lid
+    walls = std::max({walls, (p.radius[i] - p.x[i].z()) / p.radius[i], (p.radius[i] - (L - p.x[i].z())) / p.radius[i]});
+  }
+  ASSERT_GT(largest, 0.05);
+  ASSERT_GT(largest, walls * (1 + 1e-6));
+  ASSERT_GT(largest, next * (1 + 1e-6));
+  for (bool wide : {false, true}) {
+    set_simd_loops(wide);
+    Simulation below = scene, above = scene;
+    below.params.max_overlap = largest * (1 - 1e-9);
+    above.params.max_overlap = largest * (1 + 1e-9);
+    EXPECT_THROW(below.advance(), PhysicsError) << (wide ? "four-wide" : "plain");
+    EXPECT_NO_THROW(above.advance()) << (wide ? "four-wide" : "plain");
+  }
+  set_simd_loops(true);
 }
 
 }  // namespace

@@ -59,7 +59,7 @@ double pair_chunk(const ChunkInput& chunk, long first, long last, int reach_end)
   const int m = find_contacts<Periodic, Fixed>(chunk.candidates, box, first, last, found, chunk.simd);
   // Pass 2 (pair_law.hpp): the law on them.
   if constexpr (std::is_same_v<Normal, CundallNormal>)
-    if (chunk.simd && m >= kMinSimdLaw) return cundall_pair_law_simd<Fixed>(a, materials, dt, found, m, reach_end);
+    if (chunk.simd && m >= kMinSimdLaw) return cundall_pair_law_simd<Fixed>(a, materials, dt, found, m, reach_end, chunk.in.any_bonds);
   // Pass 2, in three loops over the chunk's contacts: their kinematics, their springs turned into
   // the tangent plane, the law. Each loop is short and its contacts independent, so the processor
   // overlaps the divisions and square roots of several contacts; in one long loop each contact

@@ -24,6 +24,7 @@ struct ForceLoopInput {
   const std::vector<int>& wall_runs;  // where each particle's wall candidates start (+ the end)
   const PeriodicBox& periodic;
   bool any_fixed;  // some particle is held in place (Particles::fixed)
+  bool any_bonds;  // some contact is bonded (Simulation::has_bonds)
   double dt;
   bool keep_pair_results;  // SimParams::keep_pair_results
 };

@@ -30,7 +30,11 @@ AVX2 V both(V a, V b) { return _mm256_and_pd(a, b); }
 AVX2 V but_not(V a, V b) { return _mm256_andnot_pd(b, a); }  // a and not b
 // where ? a : b, lane by lane (where: all bits set or none).
 AVX2 V select(V where, V a, V b) { return _mm256_blendv_pd(b, a, where); }
+// where ? a : +0 and where ? +0 : a: one instruction each (a blend is three on recent Intel cores).
+AVX2 V only_where(V where, V a) { return _mm256_and_pd(where, a); }
+AVX2 V zero_where(V where, V a) { return _mm256_andnot_pd(where, a); }
 AVX2 V3 select(V where, const V3& a, const V3& b) { return {select(where, a.x, b.x), select(where, a.y, b.y), select(where, a.z, b.z)}; }
+AVX2 V3 only_where(V where, const V3& a) { return {only_where(where, a.x), only_where(where, a.y), only_where(where, a.z)}; }
 AVX2 V3 gather3(const Vec3* base, __m128i slot3) {
   const double* b = base[0].data();
   return {gather(b, slot3), gather(b + 1, slot3), gather(b + 2, slot3)};
@@ -64,7 +68,7 @@ AVX2 Lanes lanes(V a) {
 // contact/contact_law.hpp's in_tangent_plane and evaluate_in_plane with CundallNormal (and the
 // kinematics of force_loop.cpp's pass 2), four contacts at a time: each step below is the scalar
 // code's, in its order; branches become selections of both outcomes.
-template <bool Fixed>
+template <bool Fixed, bool Bonds>
 [[gnu::target("avx2")]] double cundall_law_avx2(const PairLawArrays a, const MaterialTable& materials, double dt,
                                                 const FoundInChunk found, int m, int reach_end) {
   if (m == 0) return 0;
@@ -72,7 +76,6 @@ template <bool Fixed>
   for (int q = m; q < m + 3; ++q)
     found.contact[q] = found.contact[m - 1], found.dx[q] = found.dx[m - 1], found.dy[q] = found.dy[m - 1], found.dz[q] = found.dz[m - 1];
   const V zero = _mm256_setzero_pd();
-  const V3 zero3{zero, zero, zero};
   // One material: the same parameters for every contact, set once.
   const PairParams* only[4] = {&materials.pair(0, 0), &materials.pair(0, 0), &materials.pair(0, 0), &materials.pair(0, 0)};
   LawParams law(only);
@@ -117,21 +120,22 @@ template <bool Fixed>
       law = LawParams(pp);
     }
     const auto& [kn, kt, mu, damping_n, damping_t, cohesion, no_attraction] = law;
-    const V bonded = flags(a.bonded[kl[0]], a.bonded[kl[1]], a.bonded[kl[2]], a.bonded[kl[3]]);
+    // Without bonds (Bonds false: no contact of the scene holds one) every lane's flag is false.
+    const V bonded = Bonds ? flags(a.bonded[kl[0]], a.bonded[kl[1]], a.bonded[kl[2]], a.bonded[kl[3]]) : zero;
     const V vn = dot(v_rel, n);
-    const V f_el = select(less(zero, overlap), kn * overlap, zero);
+    const V f_el = only_where(less(zero, overlap), kn * overlap);
     const V sqrt_m = root(m_eff);
     V fn = f_el - (damping_n * sqrt_m) * vn;
-    fn = select(but_not(less_or_equal(overlap, zero), bonded), zero, fn);
-    fn = select(both(but_not(no_attraction, bonded), less(fn, zero)), zero, fn);
+    fn = zero_where(but_not(less_or_equal(overlap, zero), bonded), fn);
+    fn = zero_where(both(but_not(no_attraction, bonded), less(fn, zero)), fn);
     const V3 vt = (v_rel - vn * n) - cross(w_arm, n);
     const V3 trial = s + (kt * dt) * vt;
     const V cohesive = cohesion + mu * fn;
-    const V tau = select(bonded, select(less(zero, cohesive), cohesive, zero), mu * select(less(fn, zero), zero, fn));
+    const V tau = select(bonded, only_where(less(zero, cohesive), cohesive), mu * zero_where(less(fn, zero), fn));
     const V trial2 = dot(trial, trial);
     const V stick = less_or_equal(trial2, tau * tau);
     const V trial_norm = root(trial2);
-    const V3 slid = select(less(zero, trial_norm), trial * (tau / trial_norm), zero3);
+    const V3 slid = only_where(less(zero, trial_norm), trial * (tau / trial_norm));
     const V3 spring = select(stick, trial, slid);
     const V3 ft = select(stick, trial + (damping_t * sqrt_m) * vt, slid);
     const V3 on_i = (-fn) * n + ft;
@@ -145,8 +149,13 @@ template <bool Fixed>
       a.spring[kl[l]] = Vec3(sx.l[l], sy.l[l], sz.l[l]);
       keep_pair_result(a, kl[l], il[l], jl[l], Vec3(nx.l[l], ny.l[l], nz.l[l]), Vec3(fx.l[l], fy.l[l], fz.l[l]),
                        Vec3(mx.l[l], my.l[l], mz.l[l]), reach_end);
-      worst = std::max(worst, relative_overlap_if_larger(u.l[l], std::min(a.radius[il[l]], a.radius[jl[l]]), worst));
     }
+    // relative_overlap_if_larger's test on every lane with the group's first `worst`: where no lane
+    // passes, none can with the larger values the loop below may reach (almost every group).
+    const V bar = (_mm256_set1_pd(worst) * _mm256_min_pd(ri, rj)) * _mm256_set1_pd(1 - 1e-9);
+    if (_mm256_movemask_pd(_mm256_cmp_pd(overlap, bar, _CMP_GE_OQ)) != 0)
+      for (int l = 0; l < 4 && e + l < m; ++l)
+        worst = std::max(worst, relative_overlap_if_larger(u.l[l], std::min(a.radius[il[l]], a.radius[jl[l]]), worst));
   }
   return worst;
 }
@@ -157,16 +166,17 @@ template <bool Fixed>
 
 template <bool Fixed>
 double cundall_pair_law_simd(const PairLawArrays a, const MaterialTable& materials, double dt, const FoundInChunk found, int m,
-                             int reach_end) {
+                             int reach_end, bool any_bonds) {
 #ifdef DEM_SIMD_LOOPS
-  return cundall_law_avx2<Fixed>(a, materials, dt, found, m, reach_end);
+  return any_bonds ? cundall_law_avx2<Fixed, true>(a, materials, dt, found, m, reach_end)
+                   : cundall_law_avx2<Fixed, false>(a, materials, dt, found, m, reach_end);
 #else
-  (void)a, (void)materials, (void)dt, (void)found, (void)m, (void)reach_end;
+  (void)a, (void)materials, (void)dt, (void)found, (void)m, (void)reach_end, (void)any_bonds;
   return 0;  // never called: simd_loops_on() is false
 #endif
 }
 
-template double cundall_pair_law_simd<false>(PairLawArrays, const MaterialTable&, double, FoundInChunk, int, int);
-template double cundall_pair_law_simd<true>(PairLawArrays, const MaterialTable&, double, FoundInChunk, int, int);
+template double cundall_pair_law_simd<false>(PairLawArrays, const MaterialTable&, double, FoundInChunk, int, int, bool);
+template double cundall_pair_law_simd<true>(PairLawArrays, const MaterialTable&, double, FoundInChunk, int, int, bool);
 
 }  // namespace dem
