@@ -5,6 +5,7 @@
 #include <random>
 
 #include "core/error.hpp"
+#include "generation/fill.hpp"
 #include "search/largest_move.hpp"
 #include "search/linked_cells.hpp"
 #include "sim/simd.hpp"
@@ -182,6 +183,33 @@ TEST(NeighbourList, ContactsEqualBruteForceEveryStep) {
   EXPECT_GT(wall_contacts, 100u);
   EXPECT_GT(sim.neighbour_builds(), 3) << "and several list rebuilds";
   EXPECT_LT(sim.neighbour_builds(), 300) << "the list is reused between rebuilds";
+}
+
+// Held and released between two rebuilds: pairs of two held particles are no candidates, so the
+// list must be rebuilt when the held flags change. Two overlapping spheres held for a step, then
+// released (set_fixed, as a stage's release does), repel at the next step: the definition's
+// contact is there at once (brute force), and both start to move apart.
+TEST(NeighbourList, PairsOfReleasedParticlesAreFoundAtOnce) {
+  Simulation sim = box_between_plates(0.1);
+  sim.particles.add(1, Vec3(0.05, 0.05, 0.05), 0.005, 2500, 0);
+  sim.particles.add(2, Vec3(0.059, 0.05, 0.05), 0.005, 2500, 0);  // overlap 1 mm
+  sim.params.gravity = Vec3::Zero();
+  sim.dt = 0.1 * sim.critical_time_step();
+  EXPECT_EQ(set_fixed(sim, nullptr, true, true), 2u);
+  sim.advance();
+  EXPECT_EQ(sim.pair_contacts().size(), 0u) << "two held particles never interact";
+  const int builds = sim.neighbour_builds();
+  EXPECT_EQ(set_fixed(sim, nullptr, true, false), 2u);
+  ASSERT_EQ(brute_force(sim.particles).size(), 1u);
+  sim.advance();
+  EXPECT_EQ(sim.pair_contacts().size(), 1u);
+  EXPECT_GT(sim.neighbour_builds(), builds);
+  EXPECT_LT(sim.particles.v[0].x(), 0);
+  EXPECT_GT(sim.particles.v[1].x(), 0);
+  // Held again: the contact ends at the next step.
+  EXPECT_EQ(set_fixed(sim, nullptr, true, true), 2u);
+  sim.advance();
+  EXPECT_EQ(sim.pair_contacts().size(), 0u);
 }
 
 // The same along a trajectory in a box periodic along x and y (floor and lid walls in z), with a

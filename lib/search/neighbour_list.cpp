@@ -20,16 +20,17 @@ bool NeighbourList::needs_rebuild(const Particles& p, const PeriodicBox& box, co
   // particle's displacement plus the wall's (a planar polygon moves no further than its vertices).
   // Across a periodic boundary the displacement is the nearest image's.
   double dp2 = 0;
-  int changed_ids = 0;
+  int changed = 0;  // ids or held flags
   const long n = static_cast<long>(p.size());
-#pragma omp parallel reduction(max : dp2) reduction(| : changed_ids)
+#pragma omp parallel reduction(max : dp2) reduction(| : changed)
   {
     const long threads = omp_get_num_threads(), t = omp_get_thread_num();
     const long first = n * t / threads, last = n * (t + 1) / threads;
     dp2 = largest_move2(p.x.data(), x_build_.data(), box, first, last);
-    changed_ids = last > first && std::memcmp(p.id.data() + first, id_build_.data() + first, (last - first) * sizeof(Index)) != 0;
+    changed = last > first && (std::memcmp(p.id.data() + first, id_build_.data() + first, (last - first) * sizeof(Index)) != 0 ||
+                               std::memcmp(p.fixed.data() + first, fixed_build_.data() + first, last - first) != 0);
   }
-  if (changed_ids) return true;
+  if (changed) return true;
   const double dp = std::sqrt(dp2);
   double dw2 = 0;
   const long nw = static_cast<long>(walls.size());
@@ -50,6 +51,7 @@ void NeighbourList::build(const Particles& p, const PeriodicBox& box, const std:
 
   x_build_ = p.x;
   id_build_ = p.id;
+  fixed_build_ = p.fixed;
   wall_build_.assign(4 * walls.size(), Vec3::Zero());
   for (std::size_t w = 0; w < walls.size(); ++w)
     for (int v = 0; v < walls[w].count; ++v) wall_build_[4 * w + v] = walls[w].vertices[v];

@@ -40,7 +40,7 @@ alignas(32) constexpr std::array<std::array<int, 8>, 16> kCompressInts = compres
 // Four candidates at a time: the positions gathered (x is 3 doubles per particle), the separation
 // and the touch test in the plain loop's order of operations ((dx^2 + dy^2) + dz^2 < r^2), the
 // contacts moved to the front of the lanes and stored; the last one to three by the plain loop.
-template <bool Periodic, bool Fixed>
+template <bool Periodic>
 [[gnu::target("avx2")]] int find_contacts_avx2(const CandidateArrays a, const PeriodicBox& box, long first, long last,
                                                const FoundInChunk found) {
   const double* const x = a.x[0].data();
@@ -82,15 +82,6 @@ template <bool Periodic, bool Fixed>
       return static_cast<int>((bytes & 1) | (bytes >> 7 & 2) | (bytes >> 14 & 4) | (bytes >> 21 & 8));
     };
     now |= lanes(bonded4);
-    if constexpr (Fixed) {
-      int held = 0;
-      for (int l = 0; l < 4; ++l) held |= both_held(a.fixed[a.slot_i[k + l]], a.fixed[a.slot_j[k + l]]) << l;
-      if (held) {
-        now &= ~held;
-        for (int l = 0; l < 4; ++l)
-          if (held >> l & 1) a.bonded[k + l] = 0;
-      }
-    }
     const std::uint32_t now4 = (now & 1) | (now & 2) << 7 | (now & 4) << 14 | (now & 8) << 21;
     std::memcpy(a.active + k, &now4, 4);
     if (const int lost = lanes(active4) & ~now)  // rare: a contact ends
@@ -106,24 +97,22 @@ template <bool Periodic, bool Fixed>
                      _mm256_castsi256_si128(_mm256_permutevar8x32_epi32(positions, ints_to_front)));
     m += __builtin_popcount(now);
   }
-  return find_contacts_plain<Periodic, Fixed>(a, box, k, last, found, m);
+  return find_contacts_plain<Periodic>(a, box, k, last, found, m);
 }
 #endif
 
 }  // namespace
 
-template <bool Periodic, bool Fixed>
+template <bool Periodic>
 int find_contacts(const CandidateArrays a, const PeriodicBox& box, long first, long last, const FoundInChunk found,
                   [[maybe_unused]] bool simd) {
 #ifdef DEM_SIMD_LOOPS
-  if (simd) return find_contacts_avx2<Periodic, Fixed>(a, box, first, last, found);
+  if (simd) return find_contacts_avx2<Periodic>(a, box, first, last, found);
 #endif
-  return find_contacts_plain<Periodic, Fixed>(a, box, first, last, found, 0);
+  return find_contacts_plain<Periodic>(a, box, first, last, found, 0);
 }
 
-template int find_contacts<false, false>(CandidateArrays, const PeriodicBox&, long, long, FoundInChunk, bool);
-template int find_contacts<false, true>(CandidateArrays, const PeriodicBox&, long, long, FoundInChunk, bool);
-template int find_contacts<true, false>(CandidateArrays, const PeriodicBox&, long, long, FoundInChunk, bool);
-template int find_contacts<true, true>(CandidateArrays, const PeriodicBox&, long, long, FoundInChunk, bool);
+template int find_contacts<false>(CandidateArrays, const PeriodicBox&, long, long, FoundInChunk, bool);
+template int find_contacts<true>(CandidateArrays, const PeriodicBox&, long, long, FoundInChunk, bool);
 
 }  // namespace dem

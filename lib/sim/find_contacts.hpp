@@ -24,7 +24,6 @@ struct CandidateArrays {
   long count;  // candidates
   const Vec3* x;
   const double* radius;
-  const std::uint8_t* fixed;
   const int* slot_i;
   const int* slot_j;
   std::uint8_t* active;
@@ -33,8 +32,7 @@ struct CandidateArrays {
   ContactSum* sum;
 
   CandidateArrays(const Particles& p, ContactList& pc)
-      : count(static_cast<long>(pc.size())), x(p.x.data()), radius(p.radius.data()), fixed(p.fixed.data()),
-        slot_i(pc.slot_i.data()), slot_j(pc.slot_j.data()), active(pc.active.data()), bonded(pc.bonded.data()),
+      : count(static_cast<long>(pc.size())), x(p.x.data()), radius(p.radius.data()), slot_i(pc.slot_i.data()), slot_j(pc.slot_j.data()), active(pc.active.data()), bonded(pc.bonded.data()),
         spring(pc.spring.data()), sum(pc.sum.data()) {}
 };
 
@@ -49,18 +47,18 @@ struct FoundInChunk {
   double* dz;
 };
 
-// Candidates [first, last): sets active (touching or bonded; with Fixed, never between two held
-// particles, whose bond is dropped too, so that nothing depends on when the list was last rebuilt),
-// clears the spring and sum of a contact lost, and stores each contact's position and separation
-// in `found` in candidate order. Returns how many. `simd`: the four-wide version (simd_loops_on()).
+// Candidates [first, last): sets active (touching or bonded), clears the spring and sum of a contact lost, and stores each contact's position and separation
+// in `found` in candidate order. Returns how many. (No candidate joins two held particles: the
+// neighbour list leaves those out and is rebuilt when a held flag changes, which drops their
+// history, bonds included.) `simd`: the four-wide version (simd_loops_on()).
 // The arrays are taken by value: a copy that the loop's stores cannot change, so their addresses
 // stay in registers.
-template <bool Periodic, bool Fixed>
+template <bool Periodic>
 int find_contacts(CandidateArrays a, const PeriodicBox& box, long first, long last, FoundInChunk found, bool simd);
 
 // The plain loop, from candidate `first` on, appending to `found` from entry m (the four-wide
 // version finishes a chunk's last one to three candidates with it).
-template <bool Periodic, bool Fixed>
+template <bool Periodic>
 inline int find_contacts_plain(const CandidateArrays& a, const PeriodicBox& box, long first, long last,
                                const FoundInChunk& found, int m) {
   for (long k = first; k < last; ++k) {
@@ -68,12 +66,7 @@ inline int find_contacts_plain(const CandidateArrays& a, const PeriodicBox& box,
     const std::uint8_t was = a.active[k];
     const Vec3 d = separation<Periodic>(box, a.x[i], a.x[j]);
     // Bitwise, not ||: whether a candidate touches is a coin toss to the branch predictor.
-    std::uint8_t now = static_cast<std::uint8_t>(spheres_touch(d, a.radius[i], a.radius[j])) | a.bonded[k];
-    if constexpr (Fixed) {
-      const std::uint8_t free = !both_held(a.fixed[i], a.fixed[j]);
-      now &= free;
-      a.bonded[k] &= free;
-    }
+    const std::uint8_t now = static_cast<std::uint8_t>(spheres_touch(d, a.radius[i], a.radius[j])) | a.bonded[k];
     a.active[k] = now;
     found.contact[m] = static_cast<int>(k);
     found.dx[m] = d.x(), found.dy[m] = d.y(), found.dz[m] = d.z();

@@ -56,7 +56,7 @@ double pair_chunk(const ChunkInput& chunk, long first, long last, int reach_end)
   int contact[kChunk + kFoundPadding];
   double dx[kChunk + kFoundPadding], dy[kChunk + kFoundPadding], dz[kChunk + kFoundPadding];
   const FoundInChunk found{contact, dx, dy, dz};
-  const int m = find_contacts<Periodic, Fixed>(chunk.candidates, box, first, last, found, chunk.simd);
+  const int m = find_contacts<Periodic>(chunk.candidates, box, first, last, found, chunk.simd);
   // Pass 2 (pair_law.hpp): the law on them.
   if constexpr (std::is_same_v<Normal, CundallNormal>)
     if (chunk.simd && m >= kMinSimdLaw) return cundall_pair_law_simd<Fixed>(a, materials, dt, found, m, reach_end, chunk.in.any_bonds);
