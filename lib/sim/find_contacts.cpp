@@ -11,7 +11,6 @@ namespace {
 
 #ifdef DEM_SIMD_LOOPS
 using simd::gather;
-using simd::times3;
 
 // For each mask of four lanes, the 32-bit lanes that move the set lanes' doubles to the front in
 // order (a compress, which AVX2 lacks): lane q takes double l_q, i.e. 32-bit lanes 2 l_q, 2 l_q + 1.
@@ -43,7 +42,6 @@ alignas(32) constexpr std::array<std::array<int, 8>, 16> kCompressInts = compres
 template <bool Periodic>
 [[gnu::target("avx2")]] int find_contacts_avx2(const CandidateArrays a, const PeriodicBox& box, long first, long last,
                                                const FoundInChunk found) {
-  const double* const x = a.x[0].data();
   int m = 0;
   long k = first;
   // Fetched into the cache ahead: the other particle of the candidates kAhead on. Gathers that
@@ -62,10 +60,12 @@ template <bool Periodic>
       }
     const __m128i i = _mm_loadu_si128(reinterpret_cast<const __m128i*>(a.slot_i + k));
     const __m128i j = _mm_loadu_si128(reinterpret_cast<const __m128i*>(a.slot_j + k));
-    const __m128i i3 = times3(i), j3 = times3(j);
-    __m256d dx = _mm256_sub_pd(gather(x + 0, j3), gather(x + 0, i3));
-    __m256d dy = _mm256_sub_pd(gather(x + 1, j3), gather(x + 1, i3));
-    __m256d dz = _mm256_sub_pd(gather(x + 2, j3), gather(x + 2, i3));
+    __m256d xi, yi, zi, xj, yj, zj;
+    simd::load_four(a.x, a.slot_i[k], a.slot_i[k + 1], a.slot_i[k + 2], a.slot_i[k + 3], xi, yi, zi);
+    simd::load_four(a.x, a.slot_j[k], a.slot_j[k + 1], a.slot_j[k + 2], a.slot_j[k + 3], xj, yj, zj);
+    __m256d dx = _mm256_sub_pd(xj, xi);
+    __m256d dy = _mm256_sub_pd(yj, yi);
+    __m256d dz = _mm256_sub_pd(zj, zi);
     if constexpr (Periodic) {
       if (box.axis[0]) dx = simd::nearest_image(dx, _mm256_set1_pd(box.length(0)), _mm256_set1_pd(0.5 * box.length(0)));
       if (box.axis[1]) dy = simd::nearest_image(dy, _mm256_set1_pd(box.length(1)), _mm256_set1_pd(0.5 * box.length(1)));

@@ -8,7 +8,6 @@ namespace dem {
 namespace {
 
 using simd::gather;
-using simd::times3;
 // Four lanes of doubles; GCC's vector arithmetic (+ - * /) works on them lane by lane.
 using V = __m256d;
 struct V3 {
@@ -35,9 +34,10 @@ AVX2 V only_where(V where, V a) { return _mm256_and_pd(where, a); }
 AVX2 V zero_where(V where, V a) { return _mm256_andnot_pd(where, a); }
 AVX2 V3 select(V where, const V3& a, const V3& b) { return {select(where, a.x, b.x), select(where, a.y, b.y), select(where, a.z, b.z)}; }
 AVX2 V3 only_where(V where, const V3& a) { return {only_where(where, a.x), only_where(where, a.y), only_where(where, a.z)}; }
-AVX2 V3 gather3(const Vec3* base, __m128i slot3) {
-  const double* b = base[0].data();
-  return {gather(b, slot3), gather(b + 1, slot3), gather(b + 2, slot3)};
+AVX2 V3 load_four(const Vec3* base, const int (&slot)[4]) {
+  V3 out;
+  simd::load_four(base, slot[0], slot[1], slot[2], slot[3], out.x, out.y, out.z);
+  return out;
 }
 AVX2 V3 load3(const double* x, const double* y, const double* z) { return {_mm256_loadu_pd(x), _mm256_loadu_pd(y), _mm256_loadu_pd(z)}; }
 // A lane mask from four flags.
@@ -94,9 +94,8 @@ template <bool Fixed, bool Bonds>
     const V3 n = d * (1.0 / dist);
     const V ri = gather(a.radius, i), rj = gather(a.radius, j);
     const V overlap = (ri + rj) - dist;
-    const __m128i i3 = times3(i), j3 = times3(j);
-    const V3 v_rel = gather3(a.v, j3) - gather3(a.v, i3);
-    const V3 w_arm = rj * gather3(a.w, j3) + ri * gather3(a.w, i3);
+    const V3 v_rel = load_four(a.v, jl) - load_four(a.v, il);
+    const V3 w_arm = rj * load_four(a.w, jl) + ri * load_four(a.w, il);
     const V mi = gather(a.mass, i), mj = gather(a.mass, j);
     V m_eff = (mi * mj) / (mi + mj);
     if constexpr (Fixed) {  // effective_mass: against a held particle, the other's mass
@@ -106,7 +105,7 @@ template <bool Fixed, bool Bonds>
     }
 
     // The spring turned into the tangent plane, keeping its magnitude.
-    V3 s = gather3(a.spring, times3(k));
+    V3 s = load_four(a.spring, kl);
     const V s2 = dot(s, s);
     s = s - dot(s, n) * n;
     const V t2 = dot(s, s);

@@ -22,7 +22,7 @@ void Simulation::advance() {
     sort_storage();
   find_contacts();
   const bool any_fixed = particles.any_fixed();
-  const ForceLoopInput in{particles,  materials, walls, wall_geometry_, wall_runs_, periodic,
+  const ForceLoopInput in{particles, materials, walls, wall_geometry_, wall_runs_, periodic,
                           any_fixed, has_bonds_, dt, params.keep_pair_results};
   if (indexed_block_ != params.load_block || indexed_reach_ != params.load_reach) index_contacts_per_particle();
   if (block_force_.size() != particles.size()) {
