@@ -14,7 +14,8 @@ namespace dem {
 inline double sphere_volume(double a) { return 4.0 / 3.0 * std::numbers::pi * a * a * a; }
 inline double sphere_mass(double density, double a) { return density * sphere_volume(a); }  // m = rho 4/3 pi a^3
 inline double sphere_inertia(double m, double a) { return 0.4 * m * a * a; }  // I = 2/5 m a^2
-// Two held particles never interact (the search skips such pairs, the force loop drops them).
+// Two held particles never interact (the search skips such pairs; the neighbour list is rebuilt
+// when a held flag changes).
 inline bool both_held(std::uint8_t fixed_i, std::uint8_t fixed_j) { return fixed_i && fixed_j; }
 
 struct Particles {
