@@ -32,8 +32,9 @@ struct CandidateArrays {
   ContactSum* sum;
 
   CandidateArrays(const Particles& p, ContactList& pc)
-      : count(static_cast<long>(pc.size())), x(p.x.data()), radius(p.radius.data()), slot_i(pc.slot_i.data()), slot_j(pc.slot_j.data()), active(pc.active.data()), bonded(pc.bonded.data()),
-        spring(pc.spring.data()), sum(pc.sum.data()) {}
+      : count(static_cast<long>(pc.size())), x(p.x.data()), radius(p.radius.data()), slot_i(pc.slot_i.data()),
+        slot_j(pc.slot_j.data()), active(pc.active.data()), bonded(pc.bonded.data()), spring(pc.spring.data()),
+        sum(pc.sum.data()) {}
 };
 
 // The contacts found in a chunk: candidate positions and separations x_j - x_i (nearest image),
@@ -47,10 +48,11 @@ struct FoundInChunk {
   double* dz;
 };
 
-// Candidates [first, last): sets active (touching or bonded), clears the spring and sum of a contact lost, and stores each contact's position and separation
-// in `found` in candidate order. Returns how many. (No candidate joins two held particles: the
-// neighbour list leaves those out and is rebuilt when a held flag changes, which drops their
-// history, bonds included.) `simd`: the four-wide version (simd_loops_on()).
+// Candidates [first, last): sets active (touching or bonded), clears the spring and sum of a contact
+// lost, and stores each contact's position and separation in `found` in candidate order. Returns
+// how many. (No candidate joins two held particles: the neighbour list leaves those out and is
+// rebuilt when a held flag changes, which drops their history, bonds included.) `simd`: the
+// four-wide version (simd_loops_on()).
 // The arrays are taken by value: a copy that the loop's stores cannot change, so their addresses
 // stay in registers.
 template <bool Periodic>

@@ -67,9 +67,9 @@ inline double relative_overlap_if_larger(double overlap, double radius, double w
 
 // The Cundall law four contacts at a time on the m contacts `found` (whose arrays hold
 // kFoundPadding entries more), as the plain loops would; returns the largest overlap relative to
-// the smaller radius. Only where simd_loops_on(). (Arrays by value, as find_contacts.)
+// the smaller radius. Only where simd_loops_on(). (Arrays by value, as find_contacts.) any_bonds:
+// some contact may be bonded (else every bonded flag is taken as 0, unread).
 template <bool Fixed>
-// any_bonds: some contact may be bonded (else every bonded flag is taken as 0, unread).
 double cundall_pair_law_simd(PairLawArrays a, const MaterialTable& materials, double dt, FoundInChunk found, int m, int reach_end,
                              bool any_bonds);
 
