@@ -146,21 +146,17 @@ void LinkedCells::find_near_pairs(const Particles& p, const PeriodicBox& box, st
       if (first == last) continue;
       for (int m = first; m < last; ++m)
         for (int o = m + 1; o < last; ++o) test(cell_slots[m], cell_slots[o]);
-      if (!periodic) {
-        for (const long off : offset) {
-          const int other_first = cell_first[c + off], other_last = cell_first[c + off + 1];
-          for (int m = first; m < last; ++m)
-            for (int o = other_first; o < other_last; ++o) test(cell_slots[m], cell_slots[o]);
+      long cx = 0, cy = 0, cz = 0;  // the cell's coordinates, needed where a period wraps
+      if (periodic) cx = c % dims[0], cy = (c / dims[0]) % dims[1], cz = c / (dims[0] * dims[1]);
+      for (int h = 0; h < 13; ++h) {
+        long cell = c + offset[h];
+        if (periodic) {  // wrapped around the periods; off the grid along an axis that is not periodic
+          const long x = along(cx + kHalf[h][0], 0), y = along(cy + kHalf[h][1], 1), z = along(cz + kHalf[h][2], 2);
+          if (x < 0 || y < 0 || z < 0) continue;
+          cell = (z * dims[1] + y) * dims[0] + x;
         }
-        continue;
-      }
-      const long cx = c % dims[0], cy = (c / dims[0]) % dims[1], cz = c / (dims[0] * dims[1]);
-      for (const auto& h : kHalf) {
-        const long x = along(cx + h[0], 0), y = along(cy + h[1], 1), z = along(cz + h[2], 2);
-        if (x < 0 || y < 0 || z < 0) continue;
-        const long cell = (z * dims[1] + y) * dims[0] + x;
         for (int m = first; m < last; ++m)
-          for (int o = cell_first_[cell]; o < cell_first_[cell + 1]; ++o) test(cell_slots_[m], cell_slots_[o]);
+          for (int o = cell_first[cell]; o < cell_first[cell + 1]; ++o) test(cell_slots[m], cell_slots[o]);
       }
     }
   }

@@ -30,7 +30,6 @@ namespace dem::simd {
 [[gnu::target("avx2")]] inline __m128i gather(const int* base, __m128i index) {
   return _mm_mask_i32gather_epi32(_mm_setzero_si128(), base, index, _mm_set1_epi32(-1), 4);
 }
-[[gnu::target("avx2")]] inline __m128i times3(__m128i index) { return _mm_add_epi32(index, _mm_add_epi32(index, index)); }
 
 // base[a], base[b], base[c], base[d] as three registers of x, y and z: each vector read with one
 // masked load (its three doubles only: nothing read past it) and the four transposed, in place of
