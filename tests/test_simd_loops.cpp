@@ -33,8 +33,9 @@ struct Pass1Result {
 };
 
 // Random polydisperse particles in a box periodic along x and y, a third of them held; candidates
-// are random pairs (never two held particles: the neighbour list leaves those out), a third of them moved to touch within a few ulps of a_i + a_j (either side),
-// some across the periodic boundaries; random bonds and random contacts of the last step.
+// are random pairs (never two held particles: the neighbour list leaves those out), a third of
+// them moved to touch within a few ulps of a_i + a_j (either side), some across the periodic
+// boundaries; random bonds and random contacts of the last step.
 struct Pass1Case {
   Particles p;
   ContactList pc;
