@@ -12,6 +12,7 @@
 #include "generation/fill.hpp"
 #include "post/contact_forces.hpp"
 #include "sim/block_times.hpp"
+#include "sim/force_loop.hpp"
 #include "sim/simd.hpp"
 #include "sim/simulation.hpp"
 
@@ -59,7 +60,7 @@ TEST(Determinism, OneTwoAndThreeThreadsGiveTheSameBits) {
   struct Blocks {
     long block, reach;
   };
-  for (const Blocks blocks : {Blocks{4096, 1}, Blocks{16, 4}, Blocks{16, 0}}) {
+  for (const Blocks blocks : {Blocks{16, 16}, Blocks{16, 3}, Blocks{16, 1}}) {
     auto make = [&] {
       Simulation s = make_cloud();
       s.params.load_block = blocks.block, s.params.load_reach = blocks.reach;
@@ -85,6 +86,73 @@ TEST(Determinism, OneTwoAndThreeThreadsGiveTheSameBits) {
       EXPECT_TRUE(same_bits(a.pair_contacts().spring, b.pair_contacts().spring)) << what;
     }
   }
+  omp_set_num_threads(threads_before);
+}
+
+// Spheres of diameter 1 mm on a 10 x 10 x 10 lattice of spacing 0.99 mm, periodic along every
+// axis, with random velocities: each presses against its six neighbours, which lie in several load
+// blocks, so each particle's loads sum six contacts and any other order of the sums changes bits
+// (unlike the sparse cloud, where few particles have three contacts at once).
+Simulation make_pressed_lattice() {
+  Simulation sim;
+  Material m;
+  m.name = "glass";
+  m.density = 2500;
+  m.kn = m.kt = 5e4;
+  m.friction_angle = 25;
+  m.restitution = 0.3;
+  sim.materials = MaterialTable({m}, {});
+  sim.params.gravity = Vec3::Zero();
+  constexpr int kSide = 10;
+  constexpr double kSpacing = 0.99e-3;
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-0.05, 0.05);
+  Index id = 0;
+  for (int k = 0; k < kSide; ++k)
+    for (int j = 0; j < kSide; ++j)
+      for (int i = 0; i < kSide; ++i) {
+        sim.particles.add(id, kSpacing * Vec3(i + 0.5, j + 0.5, k + 0.5), 0.5e-3, 1, 0);
+        sim.particles.v[id++] = Vec3(u(rng), u(rng), u(rng));
+      }
+  PeriodicBox box;
+  box.axis = {true, true, true};
+  box.hi = Vec3::Constant(kSpacing * kSide);
+  sim.set_periodic(box);
+  sim.dt = 0.1 * sim.critical_time_step();
+  return sim;
+}
+
+// The order of the sums is kept whatever the threads' pace: one thread of two or three pauses
+// before each of its blocks (set_lagging_thread_for_tests), so that the others run ahead of it and
+// would add their contacts first were a wait missing. Blocks of 16 slots with a reach of 2 (tiles
+// of two blocks, each thread's run holds several) and of 16 (the 63 blocks in four tiles: the runs
+// begin and end inside tiles).
+TEST(Determinism, SumsKeepTheirOrderWhenAThreadLags) {
+  const int threads_before = omp_get_max_threads();
+  constexpr int kSteps = 60;
+  auto run = [&](long reach, int threads, int lagging) {
+    Simulation s = make_pressed_lattice();
+    s.params.load_block = 16, s.params.load_reach = reach;
+    omp_set_num_threads(threads);
+    set_lagging_thread_for_tests(lagging, 50);
+    for (int k = 0; k < kSteps; ++k) s.advance();
+    set_lagging_thread_for_tests(-1, 0);
+    return s;
+  };
+  const Simulation near = run(2, 1, -1), far = run(16, 1, -1);
+  ASSERT_EQ(near.pair_contacts().size(), 3000u) << "every sphere must touch its six neighbours";
+  ASSERT_FALSE(same_bits(near.particles.v, far.particles.v)) << "another order of the sums must change bits for the test to mean anything";
+  for (long reach : {2L, 16L})
+    for (int threads : {2, 3})
+      for (int lagging = 0; lagging < threads; ++lagging) {
+        const Simulation& one = reach == 2 ? near : far;
+        const Simulation s = run(reach, threads, lagging);
+        const std::string what = "reach " + std::to_string(reach) + ", " + std::to_string(threads) + " threads, thread " +
+                                 std::to_string(lagging) + " lagging";
+        EXPECT_TRUE(same_bits(one.particles.x, s.particles.x)) << what;
+        EXPECT_TRUE(same_bits(one.particles.v, s.particles.v)) << what;
+        EXPECT_TRUE(same_bits(one.particles.w, s.particles.w)) << what;
+      }
   omp_set_num_threads(threads_before);
 }
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <thread>
@@ -94,6 +95,12 @@ double pair_chunk(const ChunkInput& chunk, long first, long last, int reach_end)
   return worst;
 }
 
+// set_lagging_thread_for_tests: set between steps, read by the loop's threads.
+struct LaggingThread {
+  int thread = -1;
+  int microseconds = 0;
+} lagging;
+
 // Waits until block b of this force loop (`epoch`) is done: spins, as a barrier does.
 inline void wait_until_done(std::vector<long>& done, long b, long epoch) {
   std::atomic_ref<long> flag(done[b]);
@@ -106,13 +113,26 @@ inline void wait_until_done(std::vector<long>& done, long b, long epoch) {
   }
 }
 
+// Whether block o's contacts are added before block b's (two blocks at most `reach` apart, which
+// write common blocks; BlockLoads): within a tile in block order, across two tiles the even one first.
+inline bool added_before(long o, long b, long tile) {
+  const long to = o / tile, tb = b / tile;
+  return to == tb ? o < b : to % 2 < tb % 2;
+}
+
 template <class Normal, bool Periodic, bool Fixed>
 double pair_forces(const ForceLoopInput& in, ContactList& pc, BlockLoads& out) {
   const long blocks = static_cast<long>(out.first.size()) - 1;
   const long slots = static_cast<long>(in.particles.size());
-  const long phases = out.reach + 1;
+  const long reach = out.reach, tile = out.tile();
   out.times.fit(blocks, [&](long b) { return out.first[b + 1] - out.first[b] + 1; });  // candidates, until timed
   out.done.resize(blocks);
+  // Where the last integration did not zero the loads as it read them (the first step, a failed
+  // step, a new particle count), all of them here: a block's first writer may be of either phase.
+  if (!out.zeroed) {
+    std::memset(static_cast<void*>(out.force.data()), 0, slots * sizeof(Vec3));
+    std::memset(static_cast<void*>(out.torque.data()), 0, slots * sizeof(Vec3));
+  }
   const ChunkInput chunk{in, CandidateArrays(in.particles, pc),
                          PairLawArrays(in.particles, pc, out.force, out.torque, in.keep_pair_results), simd_loops_on()};
   double worst = 0;
@@ -120,44 +140,34 @@ double pair_forces(const ForceLoopInput& in, ContactList& pc, BlockLoads& out) {
   {
     const long threads = omp_get_num_threads(), t = omp_get_thread_num();
     // Each thread takes a contiguous run of blocks holding about its share of the last step's
-    // time (sim/block_times.hpp), the same run in every phase.
+    // time (sim/block_times.hpp), which may begin or end inside a tile.
     const long start = out.times.run_start(t, threads), end = out.times.run_start(t + 1, threads);
 #pragma omp barrier  // every run is set before any block's time changes
-    // reach + 1 phases: phase p takes the blocks b = p, p + reach + 1, ... A block's contacts are
-    // added to both particles when the other lies in the same block or the `reach` after it, so
-    // two blocks closer than reach + 1 write common blocks: the one of the earlier phase goes
-    // first. A thread runs its own blocks phase by phase; a block next to another thread's run
-    // waits for that thread's blocks of earlier phases within reach (`done`: flags that order
-    // whole blocks, as a barrier would; no force is ever added atomically). So the phases, not
-    // the threads, set the order of the sums: the same bits for any thread count. Within a phase,
-    // even threads go down and odd ones up, so that two threads reach the blocks they share first.
-    const bool down = t % 2 == 0;
+    // Two phases: the even tiles, then the odd ones (BlockLoads). In each, a thread takes its tiles
+    // from the last down and each tile's blocks in order: the tile it shares with the next thread
+    // comes first, the one it shares with the one before last, so that neither waits long. A block
+    // next to another thread's run waits for that thread's blocks within reach that come before it
+    // (`done`: flags that order whole blocks, as a barrier would; no force is ever added
+    // atomically). So the tiles, not the threads, set the order of the sums: the same bits for any
+    // thread count.
     const long tick = out.epoch;
-    for (long phase = 0; phase < phases; ++phase) {
-      const long first_b = start + ((phase - start) % phases + phases) % phases;  // the run's first of this phase
-      if (first_b >= end) continue;
-      const long last_b = first_b + (end - 1 - first_b) / phases * phases;
-      for (long b = down ? last_b : first_b; b >= first_b && b <= last_b; b += down ? -phases : phases) {
-        // Other threads' blocks within reach whose phase comes earlier.
-        for (long o = std::max(0L, b - out.reach); o <= std::min(blocks - 1, b + out.reach); ++o)
-          if ((o < start || o >= end) && o % phases < phase) wait_until_done(out.done, o, tick);
-        const double tb = omp_get_wtime();
-        const int reach_end = static_cast<int>(std::min(slots, (b + phases) * out.block));
-        // Phase 0 zeroes every block it writes: the phases after it write no other. (memset: all
-        // bits zero is +0.0; element by element, the vectors' addresses were reloaded each time.)
-        if (phase == 0 && !out.zeroed) {
-          const std::size_t bytes = (reach_end - b * out.block) * sizeof(Vec3);
-          std::memset(static_cast<void*>(out.force.data() + b * out.block), 0, bytes);
-          std::memset(static_cast<void*>(out.torque.data() + b * out.block), 0, bytes);
+    for (long phase = 0; phase < 2 && start < end; ++phase)
+      for (long tl = (end - 1) / tile; tl >= start / tile; --tl) {
+        if (tl % 2 != phase) continue;
+        for (long b = std::max(start, tl * tile); b < std::min(end, (tl + 1) * tile); ++b) {
+          for (long o = std::max(0L, b - reach); o <= std::min(blocks - 1, b + reach); ++o)
+            if ((o < start || o >= end) && added_before(o, b, tile)) wait_until_done(out.done, o, tick);
+          if (t == lagging.thread) std::this_thread::sleep_for(std::chrono::microseconds(lagging.microseconds));
+          const double tb = omp_get_wtime();
+          const int reach_end = static_cast<int>(std::min(slots, (b + reach + 1) * out.block));
+          for (long first = out.first[b]; first < out.first[b + 1]; first += kChunk) {
+            const long last = std::min(out.first[b + 1], first + kChunk);
+            worst = std::max(worst, pair_chunk<Normal, Periodic, Fixed>(chunk, first, last, reach_end));
+          }
+          std::atomic_ref<long>(out.done[b]).store(tick, std::memory_order_release);
+          out.times.record(b, omp_get_wtime() - tb);
         }
-        for (long first = out.first[b]; first < out.first[b + 1]; first += kChunk) {
-          const long last = std::min(out.first[b + 1], first + kChunk);
-          worst = std::max(worst, pair_chunk<Normal, Periodic, Fixed>(chunk, first, last, reach_end));
-        }
-        std::atomic_ref<long>(out.done[b]).store(tick, std::memory_order_release);
-        out.times.record(b, omp_get_wtime() - tb);
       }
-    }
   }
   return worst;
 }
@@ -244,6 +254,13 @@ double all_forces(const ForceLoopInput& in, ContactList& pairs, ContactList& wal
 }
 
 }  // namespace
+
+void set_lagging_thread_for_tests(int thread, int microseconds) { lagging = {thread, microseconds}; }
+
+long automatic_load_reach(long particles, long block) {
+  const double layer = std::cbrt(static_cast<double>(particles) * particles);  // n^(2/3)
+  return std::clamp(static_cast<long>(std::ceil(1.2 * layer / static_cast<double>(block))), 4L, 48L);
+}
 
 void counted_wall_touches(const Particles& p, const std::vector<WallGeometry>& geometry, const ContactList& wc, int first,
                           int n, Vec3* to_wall, std::uint8_t* touching, std::uint8_t* take, int* order) {

@@ -24,7 +24,8 @@ void Simulation::advance() {
   const bool any_fixed = particles.any_fixed();
   const ForceLoopInput in{particles, materials, walls, wall_geometry_, wall_runs_, periodic,
                           any_fixed, has_bonds_, dt, params.keep_pair_results};
-  if (indexed_block_ != params.load_block || indexed_reach_ != params.load_reach) index_contacts_per_particle();
+  const long reach = load_reach();
+  if (indexed_block_ != params.load_block || indexed_reach_ != reach) index_contacts_per_particle();
   if (block_force_.size() != particles.size()) {
     block_force_.resize(particles.size());
     block_torque_.resize(particles.size());
@@ -33,7 +34,7 @@ void Simulation::advance() {
   // The last integration zeroed the loads as it read them (saves the force loop a pass over
   // 48 bytes per particle); any other way here (the first step, a failed step, a new particle
   // count) the force loop zeroes them.
-  BlockLoads loads{params.load_block, params.load_reach, block_first_, force_times_, block_done_, ++force_epoch_,
+  BlockLoads loads{params.load_block, reach, block_first_, force_times_, block_done_, ++force_epoch_,
                    block_force_, block_torque_, loads_zeroed_};
   loads_zeroed_ = false;
   const double worst_overlap = compute_contact_forces(in, choose_force_variant(*this), pairs_, walls_, loads);
@@ -237,15 +238,19 @@ KeyOrder& Simulation::pair_key_order() const {
   return pair_by_key_;
 }
 
+long Simulation::load_reach() const {
+  if (params.load_block < 1) throw std::invalid_argument("SimParams::load_block must be at least 1");
+  if (params.load_reach < 0) throw std::invalid_argument("SimParams::load_reach must be at least 0 (0: automatic)");
+  return params.load_reach > 0 ? params.load_reach : automatic_load_reach(static_cast<long>(particles.size()), params.load_block);
+}
+
 void Simulation::index_contacts_per_particle() {
   const std::size_t n = particles.size();
   const long npc = static_cast<long>(pairs_.size());
   const long nwc = static_cast<long>(walls_.size());
   // Load blocks: candidates are stored grouped by their smaller slot, in slot order
   // (place_by_storage), so each block's candidates form one run.
-  if (params.load_block < 1) throw std::invalid_argument("SimParams::load_block must be at least 1");
-  if (params.load_reach < 0) throw std::invalid_argument("SimParams::load_reach must be at least 0");
-  const long block = params.load_block, reach = params.load_reach;
+  const long block = params.load_block, reach = load_reach();
   const long blocks = (static_cast<long>(n) + block - 1) / block;
   auto lower_slot = [&](long k) { return std::min(pairs_.slot_i[k], pairs_.slot_j[k]); };
   block_first_.resize(blocks + 1);

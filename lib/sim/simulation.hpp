@@ -38,9 +38,10 @@ struct SimParams {
   // storage slots lie in one block of load_block slots or in blocks at most load_reach apart are
   // added to both particles by the force loop, the others afterwards. Speed only, within the last
   // bits. Blocks are the unit of work of a thread, so they are small (fine shares); the reach
-  // spans about one layer of a settled bed (the vertical contacts).
+  // should span a layer of the sample (its vertical contacts); 0 = chosen from the particle count
+  // (automatic_load_reach, sim/force_loop.hpp).
   long load_block = 256;
-  long load_reach = 4;
+  long load_reach = 0;
   // Whether each step keeps every pair contact's normal and force (pair_contacts()'s normal, sum,
   // force(k), tangential(k); read by post/contact_forces.hpp). Off, a step writes them only where
   // integrate() reads them (contacts between blocks farther apart than load_reach) and
@@ -155,8 +156,9 @@ class Simulation {
   // integrate() sums, in a fixed order; rebuilt with the neighbour list.
   std::vector<int> csr_start_, csr_entry_, csr_fill_;
   std::vector<long> block_first_;  // first pair candidate of each load block, then the end
-  long indexed_block_ = 0, indexed_reach_ = -1;  // load_block and load_reach of block_first_ and the
+  long indexed_block_ = 0, indexed_reach_ = -1;  // load_block and the reach of block_first_ and the
                                                 // per-particle lists
+  long load_reach() const;  // params.load_reach, or where 0 the automatic one
   BlockTimes force_times_, integrate_times_;  // per load block, its time in each loop at the last step
   std::vector<long> block_done_;  // per load block, the epoch of the force loop that last summed it
   long force_epoch_ = 0;          // force loops run (BlockLoads::epoch)
