@@ -92,8 +92,10 @@ TEST(Determinism, OneTwoAndThreeThreadsGiveTheSameBits) {
 // Spheres of diameter 1 mm on a 10 x 10 x 10 lattice of spacing 0.99 mm, periodic along every
 // axis, with random velocities: each presses against its six neighbours, which lie in several load
 // blocks, so each particle's loads sum six contacts and any other order of the sums changes bits
-// (unlike the sparse cloud, where few particles have three contacts at once).
-Simulation make_pressed_lattice() {
+// (unlike the sparse cloud, where few particles have three contacts at once). With x_walls, two
+// walls at x = 0 and x = 10 spacings press the first and last sphere of every row (storage is
+// sorted along z, then y, then x: such spheres lie in every block) in place of the period along x.
+Simulation make_pressed_lattice(bool x_walls = false) {
   Simulation sim;
   Material m;
   m.name = "glass";
@@ -115,9 +117,11 @@ Simulation make_pressed_lattice() {
         sim.particles.v[id++] = Vec3(u(rng), u(rng), u(rng));
       }
   PeriodicBox box;
-  box.axis = {true, true, true};
+  box.axis = {!x_walls, true, true};
   box.hi = Vec3::Constant(kSpacing * kSide);
   sim.set_periodic(box);
+  if (x_walls)
+    for (bool side : {false, true}) sim.walls.push_back(Wall{"w", 0, box_face(Vec3::Zero(), box.hi, 0, side), {}});
   sim.dt = 0.1 * sim.critical_time_step();
   return sim;
 }
@@ -126,12 +130,14 @@ Simulation make_pressed_lattice() {
 // before each of its blocks (set_lagging_thread_for_tests), so that the others run ahead of it and
 // would add their contacts first were a wait missing. Blocks of 16 slots with a reach of 2 (tiles
 // of two blocks, each thread's run holds several) and of 16 (the 63 blocks in four tiles: the runs
-// begin and end inside tiles).
+// begin and end inside tiles); and with walls, whose contacts each thread adds to its own
+// particles once their pair contacts are in.
 TEST(Determinism, SumsKeepTheirOrderWhenAThreadLags) {
   const int threads_before = omp_get_max_threads();
   constexpr int kSteps = 60;
+  bool x_walls = false;
   auto run = [&](long reach, int threads, int lagging) {
-    Simulation s = make_pressed_lattice();
+    Simulation s = make_pressed_lattice(x_walls);
     s.params.load_block = 16, s.params.load_reach = reach;
     omp_set_num_threads(threads);
     set_lagging_thread_for_tests(lagging, 50);
@@ -139,20 +145,24 @@ TEST(Determinism, SumsKeepTheirOrderWhenAThreadLags) {
     set_lagging_thread_for_tests(-1, 0);
     return s;
   };
-  const Simulation near = run(2, 1, -1), far = run(16, 1, -1);
-  ASSERT_EQ(near.pair_contacts().size(), 3000u) << "every sphere must touch its six neighbours";
-  ASSERT_FALSE(same_bits(near.particles.v, far.particles.v)) << "another order of the sums must change bits for the test to mean anything";
-  for (long reach : {2L, 16L})
-    for (int threads : {2, 3})
-      for (int lagging = 0; lagging < threads; ++lagging) {
-        const Simulation& one = reach == 2 ? near : far;
-        const Simulation s = run(reach, threads, lagging);
-        const std::string what = "reach " + std::to_string(reach) + ", " + std::to_string(threads) + " threads, thread " +
-                                 std::to_string(lagging) + " lagging";
-        EXPECT_TRUE(same_bits(one.particles.x, s.particles.x)) << what;
-        EXPECT_TRUE(same_bits(one.particles.v, s.particles.v)) << what;
-        EXPECT_TRUE(same_bits(one.particles.w, s.particles.w)) << what;
-      }
+  for (bool walls : {false, true}) {
+    x_walls = walls;
+    const Simulation near = run(2, 1, -1), far = run(16, 1, -1);
+    ASSERT_EQ(near.pair_contacts().size(), walls ? 2900u : 3000u) << "every sphere must touch its six neighbours";
+    if (walls) ASSERT_EQ(near.wall_contacts().size(), 200u) << "the walls must touch the ends of every row";
+    ASSERT_FALSE(same_bits(near.particles.v, far.particles.v)) << "another order of the sums must change bits for the test to mean anything";
+    for (long reach : {2L, 16L})
+      for (int threads : {2, 3})
+        for (int lagging = 0; lagging < threads; ++lagging) {
+          const Simulation& one = reach == 2 ? near : far;
+          const Simulation s = run(reach, threads, lagging);
+          const std::string what = std::string(walls ? "walls, " : "") + "reach " + std::to_string(reach) + ", " +
+                                   std::to_string(threads) + " threads, thread " + std::to_string(lagging) + " lagging";
+          EXPECT_TRUE(same_bits(one.particles.x, s.particles.x)) << what;
+          EXPECT_TRUE(same_bits(one.particles.v, s.particles.v)) << what;
+          EXPECT_TRUE(same_bits(one.particles.w, s.particles.w)) << what;
+        }
+  }
   omp_set_num_threads(threads_before);
 }
 

@@ -35,6 +35,8 @@ struct BlockTimes {
 
   // After a block: its time, from seconds (omp_get_wtime) to nanoseconds, at least 1.
   void record(long b, double seconds) { ns[b] = 1 + static_cast<long>(1e9 * seconds); }
+  // After more work on a block recorded this step: its time added.
+  void add(long b, double seconds) { ns[b] += static_cast<long>(1e9 * seconds); }
 };
 
 }  // namespace dem

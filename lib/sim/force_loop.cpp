@@ -113,6 +113,73 @@ inline void wait_until_done(std::vector<long>& done, long b, long epoch) {
   }
 }
 
+// Working storage of one particle's wall candidates, per thread, grown to the longest run and then
+// kept (no allocation per step: OpenMP keeps its threads, and with them these).
+struct WallScratch {
+  std::vector<Vec3> to_wall;
+  std::vector<std::uint8_t> touching, take;
+  std::vector<int> order;
+};
+
+// The wall candidates of run r (one particle's, in order) after its pair contacts: whether each is a
+// contact, its law, its loads added to the particle's. Returns the largest relative overlap.
+template <class Normal>
+double wall_run(const ForceLoopInput& in, ContactList& wc, BlockLoads& out, long r, WallScratch& scratch) {
+  const Particles& p = in.particles;
+  const int first = in.wall_runs[r], n = in.wall_runs[r + 1] - first;
+  const int i = wc.slot_i[first];
+  auto& [to_wall, touching, take, order] = scratch;
+  if (static_cast<int>(to_wall.size()) < n) to_wall.resize(n), touching.resize(n), take.resize(n), order.resize(n);
+  counted_wall_touches(p, in.geometry, wc, first, n, to_wall.data(), touching.data(), take.data(), order.data());
+  for (int e = 0; e < n; ++e) take[e] = take[e] || wc.bonded[first + e];  // a bond holds regardless
+  // A new contact takes over the spring of a contact of this particle lost this step whose
+  // direction is close (within 60 degrees): rolling or sliding from one element onto its
+  // neighbour keeps the tangential force, as on a single plane.
+  for (int e = 0; e < n; ++e) {
+    const long k = first + e;
+    if (!take[e] || wc.active[k]) continue;
+    int from = -1;
+    double best = 0.5;
+    for (int o = 0; o < n; ++o) {
+      const long ko = first + o;
+      if (take[o] || !wc.active[ko] || wc.spring[ko] == Vec3::Zero()) continue;
+      const double cosine = to_wall[o].normalized().dot(to_wall[e].normalized());
+      if (cosine > best) best = cosine, from = o;
+    }
+    if (from >= 0) wc.spring[k] = wc.spring[first + from], wc.spring[first + from] = Vec3::Zero();
+  }
+  double worst = 0;
+  for (int e = 0; e < n; ++e) {
+    const long k = first + e;
+    if (!take[e]) {
+      wc.active[k] = 0;
+      wc.spring[k] = Vec3::Zero();
+      wc.sum[k] = ContactSum();
+      continue;
+    }
+    const WallGeometry& g = in.geometry[wc.slot_j[k]];
+    const double dist = to_wall[e].norm();
+    ContactKinematics c;
+    // A centre exactly on the wall has no direction to the contact point: use the plane normal.
+    c.n = dist > 0 ? Vec3(to_wall[e] / dist) : g.normal;
+    c.overlap = p.radius[i] - dist;  // eq. 2.17
+    // eq. 2.18: the velocity of the wall's material at the contact point enters.
+    c.v_rel = g.velocity_of(p.x[i] + to_wall[e]) - p.v[i];
+    c.w_arm = p.radius[i] * p.w[i];
+    c.m_eff = p.mass[i];
+    const ContactForce f = ContactLaw<Normal>::evaluate(in.materials.pair(p.material[i], in.walls[wc.slot_j[k]].material), c,
+                                                        in.dt, wc.spring[k], wc.bonded[k]);
+    const Vec3 moment = c.n.cross(f.tangential);
+    wc.active[k] = 1;
+    wc.normal[k] = c.n;
+    wc.sum[k] = {f.on_i, moment};
+    out.force[i] += f.on_i;  // eq. 2.31
+    out.torque[i] += p.radius[i] * moment;  // eq. 2.33
+    worst = std::max(worst, relative_overlap_if_larger(c.overlap, p.radius[i], worst));
+  }
+  return worst;
+}
+
 // Whether block o's contacts are added before block b's (two blocks at most `reach` apart, which
 // write common blocks; BlockLoads): within a tile in block order, across two tiles the even one first.
 inline bool added_before(long o, long b, long tile) {
@@ -121,7 +188,7 @@ inline bool added_before(long o, long b, long tile) {
 }
 
 template <class Normal, bool Periodic, bool Fixed>
-double pair_forces(const ForceLoopInput& in, ContactList& pc, BlockLoads& out) {
+double block_forces(const ForceLoopInput& in, ContactList& pc, ContactList& wc, BlockLoads& out) {
   const long blocks = static_cast<long>(out.first.size()) - 1;
   const long slots = static_cast<long>(in.particles.size());
   const long reach = out.reach, tile = out.tile();
@@ -168,75 +235,21 @@ double pair_forces(const ForceLoopInput& in, ContactList& pc, BlockLoads& out) {
           out.times.record(b, omp_get_wtime() - tb);
         }
       }
-  }
-  return worst;
-}
-
-// After the pair loop: each particle's wall contacts are added to its loads (one run per particle,
-// so one thread per particle), in the run's order.
-template <class Normal>
-double wall_forces(const ForceLoopInput& in, ContactList& wc, BlockLoads& out) {
-  const Particles& p = in.particles;
-  const long runs = static_cast<long>(in.wall_runs.size()) - 1;
-  if (runs <= 0) return 0;  // no wall candidates (the chute): no threads started, 3-5 us a step on this machine
-  double worst = 0;
-#pragma omp parallel reduction(max : worst)
-  {
-    // Per-thread working storage, grown to the longest run and then kept (no allocation per step:
-    // OpenMP keeps its threads, and with them these).
-    static thread_local std::vector<Vec3> to_wall;
-    static thread_local std::vector<std::uint8_t> touching, take;
-    static thread_local std::vector<int> order;
-#pragma omp for schedule(static)
-    for (long r = 0; r < runs; ++r) {
-      const int first = in.wall_runs[r], n = in.wall_runs[r + 1] - first;
-      const int i = wc.slot_i[first];
-      if (static_cast<int>(to_wall.size()) < n) to_wall.resize(n), touching.resize(n), take.resize(n), order.resize(n);
-      counted_wall_touches(p, in.geometry, wc, first, n, to_wall.data(), touching.data(), take.data(), order.data());
-      for (int e = 0; e < n; ++e) take[e] = take[e] || wc.bonded[first + e];  // a bond holds regardless
-      // A new contact takes over the spring of a contact of this particle lost this step whose
-      // direction is close (within 60 degrees): rolling or sliding from one element onto its
-      // neighbour keeps the tangential force, as on a single plane.
-      for (int e = 0; e < n; ++e) {
-        const long k = first + e;
-        if (!take[e] || wc.active[k]) continue;
-        int from = -1;
-        double best = 0.5;
-        for (int o = 0; o < n; ++o) {
-          const long ko = first + o;
-          if (take[o] || !wc.active[ko] || wc.spring[ko] == Vec3::Zero()) continue;
-          const double cosine = to_wall[o].normalized().dot(to_wall[e].normalized());
-          if (cosine > best) best = cosine, from = o;
-        }
-        if (from >= 0) wc.spring[k] = wc.spring[first + from], wc.spring[first + from] = Vec3::Zero();
-      }
-      for (int e = 0; e < n; ++e) {
-        const long k = first + e;
-        if (!take[e]) {
-          wc.active[k] = 0;
-          wc.spring[k] = Vec3::Zero();
-          wc.sum[k] = ContactSum();
-          continue;
-        }
-        const WallGeometry& g = in.geometry[wc.slot_j[k]];
-        const double dist = to_wall[e].norm();
-        ContactKinematics c;
-        // A centre exactly on the wall has no direction to the contact point: use the plane normal.
-        c.n = dist > 0 ? Vec3(to_wall[e] / dist) : g.normal;
-        c.overlap = p.radius[i] - dist;  // eq. 2.17
-        // eq. 2.18: the velocity of the wall's material at the contact point enters.
-        c.v_rel = g.velocity_of(p.x[i] + to_wall[e]) - p.v[i];
-        c.w_arm = p.radius[i] * p.w[i];
-        c.m_eff = p.mass[i];
-        const ContactForce f = ContactLaw<Normal>::evaluate(in.materials.pair(p.material[i], in.walls[wc.slot_j[k]].material), c,
-                                                            in.dt, wc.spring[k], wc.bonded[k]);
-        const Vec3 moment = c.n.cross(f.tangential);
-        wc.active[k] = 1;
-        wc.normal[k] = c.n;
-        wc.sum[k] = {f.on_i, moment};
-        out.force[i] += f.on_i;  // eq. 2.31
-        out.torque[i] += p.radius[i] * moment;  // eq. 2.33
-        worst = std::max(worst, relative_overlap_if_larger(c.overlap, p.radius[i], worst));
+    // Then the wall contacts of the run's particles, block by block, each particle's after all its
+    // pair contacts: those come from its own block and the `reach` before it, so the thread waits
+    // for the other's blocks there. (Taken by the thread whose core holds the particles, and timed
+    // with their blocks: in a loop of its own, split by runs, two threads took 1.6 times the
+    // time of one.)
+    if (in.wall_runs.size() > 1) {
+      static thread_local WallScratch scratch;
+      WallScratch& mine = scratch;
+      for (long o = std::max(0L, start - reach); o < start; ++o) wait_until_done(out.done, o, tick);
+      for (long b = start; b < end; ++b) {
+        if (in.wall_block_first[b] == in.wall_block_first[b + 1]) continue;
+        const double tb = omp_get_wtime();
+        for (int q = in.wall_block_first[b]; q < in.wall_block_first[b + 1]; ++q)
+          worst = std::max(worst, wall_run<Normal>(in, wc, out, in.wall_run_order[q], mine));
+        out.times.add(b, omp_get_wtime() - tb);
       }
     }
   }
@@ -245,12 +258,9 @@ double wall_forces(const ForceLoopInput& in, ContactList& wc, BlockLoads& out) {
 
 template <class Normal>
 double all_forces(const ForceLoopInput& in, ContactList& pairs, ContactList& walls, BlockLoads& loads) {
-  double worst_pair;
   if (in.periodic.any())
-    worst_pair = in.any_fixed ? pair_forces<Normal, true, true>(in, pairs, loads) : pair_forces<Normal, true, false>(in, pairs, loads);
-  else
-    worst_pair = in.any_fixed ? pair_forces<Normal, false, true>(in, pairs, loads) : pair_forces<Normal, false, false>(in, pairs, loads);
-  return std::max(worst_pair, wall_forces<Normal>(in, walls, loads));
+    return in.any_fixed ? block_forces<Normal, true, true>(in, pairs, walls, loads) : block_forces<Normal, true, false>(in, pairs, walls, loads);
+  return in.any_fixed ? block_forces<Normal, false, true>(in, pairs, walls, loads) : block_forces<Normal, false, false>(in, pairs, walls, loads);
 }
 
 }  // namespace

@@ -22,6 +22,8 @@ struct ForceLoopInput {
   const std::vector<Wall>& walls;
   const std::vector<WallGeometry>& geometry;  // the walls now
   const std::vector<int>& wall_runs;  // where each particle's wall candidates start (+ the end)
+  const std::vector<int>& wall_run_order;   // the runs by their particle's storage slot
+  const std::vector<int>& wall_block_first; // per load block, its first run in wall_run_order (+ the end)
   const PeriodicBox& periodic;
   bool any_fixed;  // some particle is held in place (Particles::fixed)
   bool any_bonds;  // some contact is bonded (Simulation::has_bonds)

@@ -152,6 +152,7 @@ class Simulation {
   mutable bool pair_view_current_ = false, wall_view_current_ = false;
   void contacts_modified();  // the views must be compacted again
   std::vector<WallGeometry> wall_geometry_;
+  bool walls_move_ = false;  // some element of wall_geometry_ has a velocity or a spin
   // Per-particle lists of the pair candidates between blocks farther apart than load_reach, which
   // integrate() sums, in a fixed order; rebuilt with the neighbour list.
   std::vector<int> csr_start_, csr_entry_, csr_fill_;
@@ -165,6 +166,7 @@ class Simulation {
   std::vector<Vec3> block_force_, block_torque_;  // per slot, the sums of the force loop (BlockLoads)
   bool loads_zeroed_ = false;  // integrate() cleared block_force_ and block_torque_ as it read them
   std::vector<int> wall_runs_;  // first wall candidate of each particle, then the end
+  std::vector<int> wall_run_order_, wall_block_first_;  // ForceLoopInput's
 };
 
 }  // namespace dem
