@@ -25,6 +25,18 @@ void join_and_release(std::vector<std::vector<FoundContact>>& parts, std::vector
     std::vector<FoundContact>().swap(parts[c]);
   }
 }
+// [first, last) in order: an insertion sort where there are a few (a group holds a handful of
+// candidates, for which std::sort's setup took longer than the sorting: a fifth of the search's
+// time on a settled bed), std::sort beyond.
+void sort_small(FoundContact* first, FoundContact* last) {
+  if (last - first > 32) return std::sort(first, last);
+  for (FoundContact* q = first + 1; q < last; ++q) {
+    const FoundContact f = *q;
+    FoundContact* r = q;
+    for (; r > first && f < r[-1]; --r) *r = r[-1];
+    *r = f;
+  }
+}
 }  // namespace
 
 long LinkedCells::cell_coord(double x, int d) const {
@@ -178,7 +190,7 @@ void LinkedCells::find_near_pairs(const Particles& p, const PeriodicBox& box, st
     std::vector<FoundContact>().swap(parts_[t]);  // kept, they would double the memory of the found pairs
   }
 #pragma omp parallel for schedule(static, 1024)
-  for (long s = 0; s < n; ++s) std::sort(out.begin() + group_start[s], out.begin() + group_start[s + 1]);
+  for (long s = 0; s < n; ++s) sort_small(out.data() + group_start[s], out.data() + group_start[s + 1]);
 }
 
 void LinkedCells::find_near_walls(const Particles& p, const std::vector<WallGeometry>& walls, std::vector<FoundContact>& out,
