@@ -21,15 +21,20 @@
 namespace dem {
 namespace {
 
-Simulation make_cloud() {
-  Simulation sim;
+// Glass beads: the material of both scenes below.
+MaterialTable glass() {
   Material m;
   m.name = "glass";
   m.density = 2500;
   m.kn = m.kt = 5e4;
   m.friction_angle = 25;
   m.restitution = 0.3;
-  sim.materials = MaterialTable({m}, {});
+  return MaterialTable({m}, {});
+}
+
+Simulation make_cloud() {
+  Simulation sim;
+  sim.materials = glass();
   const double L = 0.02;
   const Vec3 lo(0, 0, 0), hi(L, L, 2 * L);
   // Six walls of a closed box.
@@ -97,13 +102,7 @@ TEST(Determinism, OneTwoAndThreeThreadsGiveTheSameBits) {
 // sorted along z, then y, then x: such spheres lie in every block) in place of the period along x.
 Simulation make_pressed_lattice(bool x_walls = false) {
   Simulation sim;
-  Material m;
-  m.name = "glass";
-  m.density = 2500;
-  m.kn = m.kt = 5e4;
-  m.friction_angle = 25;
-  m.restitution = 0.3;
-  sim.materials = MaterialTable({m}, {});
+  sim.materials = glass();
   sim.params.gravity = Vec3::Zero();
   constexpr int kSide = 10;
   constexpr double kSpacing = 0.99e-3;
