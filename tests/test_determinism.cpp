@@ -59,7 +59,10 @@ Simulation make_cloud() {
 // across blocks (within reach and farther) and the threads share out many blocks, and with the
 // storage re-sorted every 7 steps; three threads too (an odd count, more threads than this
 // machine's cores: threads wait for each other's blocks), and a run whose thread count changes
-// from step to step (the shares of the last step no longer fit).
+// from step to step (the shares of the last step no longer fit). The 13 blocks of 16 slots in one
+// tile (reach 16: the threads split it), in tiles of 3 and of 1. (Few of this cloud's particles
+// sum three contacts at once, so a wrong order seldom shows here: the lagging-thread test below
+// checks the order.)
 TEST(Determinism, OneTwoAndThreeThreadsGiveTheSameBits) {
   const int threads_before = omp_get_max_threads();
   struct Blocks {

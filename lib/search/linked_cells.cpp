@@ -25,6 +25,7 @@ void join_and_release(std::vector<std::vector<FoundContact>>& parts, std::vector
     std::vector<FoundContact>().swap(parts[c]);
   }
 }
+
 // [first, last) in order: an insertion sort where there are a few (a group holds a handful of
 // candidates, for which std::sort's setup took longer than the sorting: a fifth of the search's
 // time on a settled bed), std::sort beyond.
@@ -37,6 +38,7 @@ void sort_small(FoundContact* first, FoundContact* last) {
     *r = f;
   }
 }
+
 }  // namespace
 
 long LinkedCells::cell_coord(double x, int d) const {
