@@ -104,17 +104,20 @@ Vec3 closest_on_segment(const Vec3& a, const Vec3& b, const Vec3& p) {
 
 Vec3 closest_point_on_polygon(const Vec3* v, int n, const Vec3& nrm, const Vec3& p) {
   const Vec3 q = p - (p - v[0]).dot(nrm) * nrm;  // projection on the plane
+  // The vertex after k, without `% n` (an integer division per edge: this function's samples on
+  // the settle of 10^4 went from 1,669 to 1,488).
+  const auto next = [n](int k) { return k + 1 < n ? k + 1 : 0; };
   bool inside = true;
   for (int k = 0; k < n && inside; ++k) {
     const Vec3& a = v[k];
-    const Vec3& b = v[(k + 1) % n];
+    const Vec3& b = v[next(k)];
     inside = (b - a).cross(q - a).dot(nrm) >= 0;  // vertices are counter-clockwise about nrm
   }
   if (inside) return q;
   Vec3 best = closest_on_segment(v[0], v[1], p);
   double best_d2 = (best - p).squaredNorm();
   for (int k = 1; k < n; ++k) {
-    const Vec3 c = closest_on_segment(v[k], v[(k + 1) % n], p);
+    const Vec3 c = closest_on_segment(v[k], v[next(k)], p);
     const double d2 = (c - p).squaredNorm();
     if (d2 < best_d2) best = c, best_d2 = d2;
   }
