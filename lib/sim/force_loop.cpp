@@ -191,7 +191,7 @@ template <class Normal, bool Periodic, bool Fixed>
 double block_forces(const ForceLoopInput& in, ContactList& pc, ContactList& wc, BlockLoads& out) {
   const long blocks = static_cast<long>(out.first.size()) - 1;
   const long slots = static_cast<long>(in.particles.size());
-  const long reach = out.reach, tile = out.tile();
+  const long reach = out.reach, tile = out.reach;  // tiles of `reach` blocks (BlockLoads)
   out.times.fit(blocks, [&](long b) { return out.first[b + 1] - out.first[b] + 1; });  // candidates, until timed
   out.done.resize(blocks);
   // Where the last integration did not zero the loads as it read them (the first step, a failed

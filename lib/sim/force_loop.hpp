@@ -57,7 +57,6 @@ struct BlockLoads {
   std::vector<Vec3>& torque;      // per slot: sum of a n x f_t, eq. 2.33-2.34 [N m]
   bool zeroed;                    // force and torque hold zeros already (the last integration
                                   // cleared them as it read them), else the loop zeroes them
-  long tile() const { return reach; }  // blocks per tile
 };
 
 // SimParams::load_reach 0 (automatic) for `particles` particles in blocks of `block` slots: about
