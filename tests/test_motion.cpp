@@ -20,11 +20,14 @@
 namespace dem {
 namespace {
 
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
 // 1,003 particles (groups of four and a remainder) with random states and loads; every 7th held;
 // a fifth have contacts summed here (random pairs, some of them mere candidates), in runs and
 // alone, some in groups with held particles.
 struct MotionCase {
-  std::vector<Vec3> x, v, w, force, torque;
+  std::vector<Vec3> x, v, w;
+  std::vector<LoadSum> force, torque;  // their fourth doubles NaN: never read
   std::vector<Vec3i> image;
   std::vector<double> mass, radius;
   std::vector<std::uint8_t> fixed;
@@ -47,7 +50,7 @@ struct MotionCase {
     csr_start.push_back(0);
     std::uniform_int_distribution<int> pair(0, pairs - 1), count(1, 4);
     for (long i = 0; i < n; ++i) {
-      x.push_back(vec(1)), v.push_back(vec(0.1)), w.push_back(vec(10)), force.push_back(vec(1e-3)), torque.push_back(vec(1e-6));
+      x.push_back(vec(1)), v.push_back(vec(0.1)), w.push_back(vec(10)), force.push_back({vec(1e-3), kNaN}), torque.push_back({vec(1e-6), kNaN});
       image.push_back(Vec3i(1, -2, 3));
       if (periodic) {
         x.back() = x.back().cwiseAbs();
@@ -88,7 +91,7 @@ Expected definition(const MotionCase& m, long i, bool any_fixed) {
   if (any_fixed && m.fixed[i]) return {m.x[i], Vec3::Zero(), Vec3::Zero(), m.image[i]};
   Expected e{Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), m.image[i]};
   for (int d = 0; d < 3; ++d) {
-    double f = m.mass[i] * m.c.gravity[d] + m.force[i][d], t = m.torque[i][d];
+    double f = m.mass[i] * m.c.gravity[d] + m.force[i].v[d], t = m.torque[i].v[d];
     for (int q = m.csr_start[i]; q < m.csr_start[i + 1]; ++q) {
       const int k = m.csr_entry[q] >> 1;
       if (!m.active[k]) continue;
@@ -136,8 +139,8 @@ TEST(Motion, FourAtATimeGiveTheDefinitionsBits) {
             ASSERT_EQ(m.w[i], e.w) << what;
             ASSERT_EQ(m.image[i], e.image) << what;
             // The loads read are cleared for the next force loop (BlockLoads::zeroed).
-            ASSERT_EQ(m.force[i], moved ? Vec3::Zero() : before.force[i]) << what;
-            ASSERT_EQ(m.torque[i], moved ? Vec3::Zero() : before.torque[i]) << what;
+            ASSERT_EQ(m.force[i].v, moved ? Vec3::Zero() : before.force[i].v) << what;
+            ASSERT_EQ(m.torque[i].v, moved ? Vec3::Zero() : before.torque[i].v) << what;
             wrapped += e.image != before.image[i];
           }
         if (periodic && last - first > 100) EXPECT_GT(wrapped, 200) << "the case must move particles across the boundaries";
@@ -157,8 +160,8 @@ TEST(Motion, ReportsTheLastParticleWhoseStateIsNotFinite) {
     set_simd_loops(simd);
     for (long bad : {0L, 2L, 5L, 998L, 1002L}) {
       MotionCase m(1003);
-      m.force[bad / 2].x() = nan;  // an earlier one, in another group or the same
-      m.torque[bad].z() = inf;
+      m.force[bad / 2].v.x() = nan;  // an earlier one, in another group or the same
+      m.torque[bad].v.z() = inf;
       EXPECT_EQ(move_particles(m.arrays(false), m.c, 0, 1003), bad) << (simd ? "four at a time" : "one by one");
       MotionCase large(1003);
       large.x[bad] = Vec3(0, 0.9 * std::numeric_limits<double>::max(), 0);

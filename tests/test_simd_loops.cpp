@@ -181,23 +181,36 @@ Simulation law_scene() {
   return sim;
 }
 
+// The four-wide law keeps its results in two ways: where all four contacts of a group are summed
+// in the loop and only loads are kept (SimParams::keep_pair_results false), their loads as whole
+// vectors; else lane by lane through keep_pair_result. Both end with the plain loops' bits: runs
+// keeping every pair result and only the loads, with blocks of 256 slots (every contact summed in
+// the loop) and of 8 slots with a reach of 1 (many contacts summed in the integration: groups of
+// both kinds).
 TEST(SimdLoops, LawEndsARunWithThePlainLoopsBits) {
   if (!simd_loops_available()) GTEST_SKIP() << "no AVX2 on this processor: only the plain loops run";
-  Simulation plain = law_scene(), wide = law_scene();
-  ASSERT_GT(std::count(plain.particles.fixed.begin(), plain.particles.fixed.end(), 1), 20);
-  for (Simulation* sim : {&plain, &wide}) {
-    set_simd_loops(sim == &wide);
-    for (int s = 0; s < 400; ++s) sim->advance();
-    EXPECT_GT(sim->bond_present_contacts(false), 50u);
-    for (int s = 0; s < 1000; ++s) sim->advance();
+  for (const long block : {256L, 8L}) {
+    Simulation plain = law_scene(), kept = law_scene(), lean = law_scene();
+    ASSERT_GT(std::count(plain.particles.fixed.begin(), plain.particles.fixed.end(), 1), 20);
+    lean.params.keep_pair_results = false;
+    for (Simulation* sim : {&plain, &kept, &lean}) {
+      sim->params.load_block = block, sim->params.load_reach = block == 8 ? 1 : 0;
+      set_simd_loops(sim != &plain);
+      for (int s = 0; s < 400; ++s) sim->advance();
+      EXPECT_GT(sim->bond_present_contacts(false), 50u);
+      for (int s = 0; s < 1000; ++s) sim->advance();
+    }
+    set_simd_loops(true);
+    ASSERT_GT(std::count(plain.pair_contacts().bonded.begin(), plain.pair_contacts().bonded.end(), 1), 20);
+    for (const Simulation* wide : {&kept, &lean}) {
+      const std::string what = std::string(wide == &kept ? "every result kept" : "loads only") + ", blocks of " + std::to_string(block);
+      EXPECT_TRUE(same_bits(plain.particles.x, wide->particles.x)) << what;
+      EXPECT_TRUE(same_bits(plain.particles.v, wide->particles.v)) << what;
+      EXPECT_TRUE(same_bits(plain.particles.w, wide->particles.w)) << what;
+      EXPECT_TRUE(same_bits(plain.pair_contacts().spring, wide->pair_contacts().spring)) << what;
+      EXPECT_TRUE(same_bits(plain.pair_contacts().bonded, wide->pair_contacts().bonded)) << what;
+    }
   }
-  set_simd_loops(true);
-  ASSERT_GT(std::count(plain.pair_contacts().bonded.begin(), plain.pair_contacts().bonded.end(), 1), 20);
-  EXPECT_TRUE(same_bits(plain.particles.x, wide.particles.x));
-  EXPECT_TRUE(same_bits(plain.particles.v, wide.particles.v));
-  EXPECT_TRUE(same_bits(plain.particles.w, wide.particles.w));
-  EXPECT_TRUE(same_bits(plain.pair_contacts().spring, wide.pair_contacts().spring));
-  EXPECT_TRUE(same_bits(plain.pair_contacts().bonded, wide.pair_contacts().bonded));
 }
 
 // The law also returns the largest overlap relative to the smaller radius, which stops a run past

@@ -173,8 +173,8 @@ double wall_run(const ForceLoopInput& in, ContactList& wc, BlockLoads& out, long
     wc.active[k] = 1;
     wc.normal[k] = c.n;
     wc.sum[k] = {f.on_i, moment};
-    out.force[i] += f.on_i;  // eq. 2.31
-    out.torque[i] += p.radius[i] * moment;  // eq. 2.33
+    out.force[i].v += f.on_i;  // eq. 2.31
+    out.torque[i].v += p.radius[i] * moment;  // eq. 2.33
     worst = std::max(worst, relative_overlap_if_larger(c.overlap, p.radius[i], worst));
   }
   return worst;
@@ -197,8 +197,8 @@ double block_forces(const ForceLoopInput& in, ContactList& pc, ContactList& wc, 
   // Where the last integration did not zero the loads as it read them (the first step, a failed
   // step, a new particle count), all of them here: a block's first writer may be of either phase.
   if (!out.zeroed) {
-    std::memset(static_cast<void*>(out.force.data()), 0, slots * sizeof(Vec3));
-    std::memset(static_cast<void*>(out.torque.data()), 0, slots * sizeof(Vec3));
+    std::memset(static_cast<void*>(out.force.data()), 0, slots * sizeof(LoadSum));
+    std::memset(static_cast<void*>(out.torque.data()), 0, slots * sizeof(LoadSum));
   }
   const ChunkInput chunk{in, CandidateArrays(in.particles, pc),
                          PairLawArrays(in.particles, pc, out.force, out.torque, in.keep_pair_results), simd_loops_on()};

@@ -6,6 +6,7 @@
 
 #include "contact/contact_list.hpp"
 #include "sim/block_times.hpp"
+#include "sim/load_sum.hpp"
 #include "state/materials.hpp"
 #include "state/particles.hpp"
 #include "state/periodic.hpp"
@@ -53,8 +54,8 @@ struct BlockLoads {
                                   // share the blocks out
   std::vector<long>& done;        // per block: the epoch of the force loop that last summed it
   long epoch;                     // this force loop's: unlike any before it
-  std::vector<Vec3>& force;       // per slot: sum of those contact forces [N]
-  std::vector<Vec3>& torque;      // per slot: sum of a n x f_t, eq. 2.33-2.34 [N m]
+  std::vector<LoadSum>& force;    // per slot: sum of those contact forces [N]
+  std::vector<LoadSum>& torque;   // per slot: sum of a n x f_t, eq. 2.33-2.34 [N m]
   bool zeroed;                    // force and torque hold zeros already (the last integration
                                   // cleared them as it read them), else the loop zeroes them
 };

@@ -36,12 +36,12 @@ inline bool finite_state(const MotionArrays& a, long i) {
 // new state is not finite.
 inline bool move_one(const MotionArrays& a, const MotionConstants& c, long i) {
   if (a.fixed && a.fixed[i]) {
-    a.v[i] = a.w[i] = a.force[i] = a.torque[i] = Vec3::Zero();
+    a.v[i] = a.w[i] = a.force[i].v = a.torque[i].v = Vec3::Zero();
     return true;
   }
-  Vec3 force = a.mass[i] * c.gravity + a.force[i];
-  Vec3 torque = a.torque[i];
-  a.force[i] = a.torque[i] = Vec3::Zero();
+  Vec3 force = a.mass[i] * c.gravity + a.force[i].v;
+  Vec3 torque = a.torque[i].v;
+  a.force[i].v = a.torque[i].v = Vec3::Zero();
   add_contacts_summed_here(a, i, force, torque);
   a.v[i] = (c.ar * a.v[i] + force * (c.dt / a.mass[i])) * c.br;
   a.w[i] = (c.at * a.w[i] + torque * (c.dt / sphere_inertia(a.mass[i], a.radius[i]))) * c.bt;
@@ -60,6 +60,16 @@ long move_one_by_one(const MotionArrays& a, const MotionConstants& c, long first
 #ifdef DEM_SIMD_LOOPS
 using simd::by_axis;
 using simd::by_particle;
+
+// Four particles' padded loads [x y z -] as their vectors are laid out (sim/simd.hpp): [x0 y0 z0 x1],
+// [y1 z1 x2 y2], [z2 x3 y3 z3]. From loads, broadcasts and blends only (no shuffle across the
+// register's halves: those have one port, which the integration keeps busy already).
+[[gnu::target("avx2")]] inline void packed_loads(const LoadSum* s, __m256d out[3]) {
+  const double* f = s[0].v.data();  // 16 doubles: x y z - of each
+  out[0] = _mm256_blend_pd(_mm256_load_pd(f), _mm256_broadcast_sd(f + 4), 0b1000);  // [x0 y0 z0 -] with x1
+  out[1] = _mm256_blend_pd(_mm256_loadu_pd(f + 5), _mm256_broadcast_pd(reinterpret_cast<const __m128d*>(f + 8)), 0b1100);  // [y1 z1 - x2] with x2 y2
+  out[2] = _mm256_blend_pd(_mm256_loadu_pd(f + 11), _mm256_broadcast_sd(f + 10), 0b0001);  // [- x3 y3 z3] with z2
+}
 
 [[gnu::target("avx2")]] long move_four_at_a_time(const MotionArrays& a, const MotionConstants& c, long first, long last) {
   const __m256d ar = _mm256_set1_pd(c.ar), br = _mm256_set1_pd(c.br), at = _mm256_set1_pd(c.at), bt = _mm256_set1_pd(c.bt);
@@ -94,11 +104,9 @@ using simd::by_particle;
     by_particle(m, mass);
     by_particle(dt / m, to_v);                             // dt / m
     by_particle(dt / (((two_fifths * m) * r) * r), to_w);  // dt / I, I = sphere_inertia(m, a)
-    for (int q = 0; q < 3; ++q) {
-      force[q] = mass[q] * gravity[q] + _mm256_loadu_pd(a.force[i].data() + 4 * q);
-      torque[q] = _mm256_loadu_pd(a.torque[i].data() + 4 * q);
-      _mm256_storeu_pd(a.force[i].data() + 4 * q, zero), _mm256_storeu_pd(a.torque[i].data() + 4 * q, zero);
-    }
+    packed_loads(a.force + i, force), packed_loads(a.torque + i, torque);
+    for (int q = 0; q < 3; ++q) force[q] = mass[q] * gravity[q] + force[q];
+    for (int p = 0; p < 4; ++p) _mm256_store_pd(a.force[i + p].v.data(), zero), _mm256_store_pd(a.torque[i + p].v.data(), zero);
     if (a.csr_start[i + 4] != a.csr_start[i]) {  // some have contacts summed here: added one by one
       alignas(32) Vec3 f[4], t[4];
       for (int q = 0; q < 3; ++q) _mm256_store_pd(f[0].data() + 4 * q, force[q]), _mm256_store_pd(t[0].data() + 4 * q, torque[q]);

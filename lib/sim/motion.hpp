@@ -9,6 +9,7 @@
 
 #include "contact/contact_list.hpp"
 #include "core/types.hpp"
+#include "sim/load_sum.hpp"
 #include "state/particles.hpp"
 #include "state/periodic.hpp"
 
@@ -31,8 +32,8 @@ struct MotionArrays {
   const double* mass;
   const double* radius;
   const std::uint8_t* fixed;  // null where no particle is held
-  Vec3* force;                // the force loop's sums (BlockLoads), zeroed once read
-  Vec3* torque;
+  LoadSum* force;             // the force loop's sums (BlockLoads), zeroed once read
+  LoadSum* torque;
   // The contacts summed here (Simulation::index_contacts_per_particle): particle i's are entries
   // csr_start[i] to csr_start[i + 1] of csr_entry, 2k for pair k seen from its i, 2k + 1 from its j.
   const int* csr_start;

@@ -64,6 +64,50 @@ AVX2 Lanes lanes(V a) {
   _mm256_store_pd(out.l, a);
   return out;
 }
+// Four lanes' vectors, one register each: [x y z 0] (a 4 x 4 transpose with a zero row).
+AVX2 void per_lane(const V3& a, V (&out)[4]) {
+  const V zero = _mm256_setzero_pd();
+  const V xy_02 = _mm256_unpacklo_pd(a.x, a.y), xy_13 = _mm256_unpackhi_pd(a.x, a.y);  // x0 y0 x2 y2, x1 y1 x3 y3
+  const V z_02 = _mm256_unpacklo_pd(a.z, zero), z_13 = _mm256_unpackhi_pd(a.z, zero);  // z0 0 z2 0, z1 0 z3 0
+  out[0] = _mm256_permute2f128_pd(xy_02, z_02, 0x20);
+  out[1] = _mm256_permute2f128_pd(xy_13, z_13, 0x20);
+  out[2] = _mm256_permute2f128_pd(xy_02, z_02, 0x31);
+  out[3] = _mm256_permute2f128_pd(xy_13, z_13, 0x31);
+}
+// s += a and s -= a on a padded load (its fourth double is never read).
+AVX2 void add_to(LoadSum& s, V a) { _mm256_store_pd(s.v.data(), _mm256_load_pd(s.v.data()) + a); }
+AVX2 void take_from(LoadSum& s, V a) { _mm256_store_pd(s.v.data(), _mm256_load_pd(s.v.data()) - a); }
+
+// What the first `count` of four contacts (k, between slots i and j) leave, where all are summed
+// here and only loads are kept: keep_pair_result's operations lane by lane, each vector added with
+// one load, add and store (sim/load_sum.hpp; from lane arrays a double at a time, as
+// keep_one_by_one, the chute took 6 % longer). The spring with a masked store: its three doubles,
+// nothing written past it.
+AVX2 void keep_loads(const PairLawArrays& a, const int (&k)[4], const int (&i)[4], const int (&j)[4], int count,
+                     const V3& spring, const V3& on_i, const V3& moment_i, const V3& moment_j) {
+  V s[4], f[4], t_i[4], t_j[4];
+  per_lane(spring, s), per_lane(on_i, f), per_lane(moment_i, t_i), per_lane(moment_j, t_j);
+  const __m256i xyz = _mm256_setr_epi64x(-1, -1, -1, 0);
+  for (int l = 0; l < count; ++l) {
+    _mm256_maskstore_pd(a.spring[k[l]].data(), xyz, s[l]);
+    add_to(a.force[i[l]], f[l]);  // eq. 2.31-2.32
+    take_from(a.force[j[l]], f[l]);
+    add_to(a.torque[i[l]], t_i[l]);  // eq. 2.33-2.34: a n x f_t for i and j alike
+    add_to(a.torque[j[l]], t_j[l]);
+  }
+}
+// The same by keep_pair_result itself, from lane arrays: any contact.
+AVX2 void keep_one_by_one(const PairLawArrays& a, const int (&k)[4], const int (&i)[4], const int (&j)[4], int count,
+                          const V3& spring, const V3& n, const V3& on_i, const V3& moment, int reach_end) {
+  const Lanes nx = lanes(n.x), ny = lanes(n.y), nz = lanes(n.z), fx = lanes(on_i.x), fy = lanes(on_i.y), fz = lanes(on_i.z);
+  const Lanes mx = lanes(moment.x), my = lanes(moment.y), mz = lanes(moment.z);
+  const Lanes sx = lanes(spring.x), sy = lanes(spring.y), sz = lanes(spring.z);
+  for (int l = 0; l < count; ++l) {
+    a.spring[k[l]] = Vec3(sx.l[l], sy.l[l], sz.l[l]);
+    keep_pair_result(a, k[l], i[l], j[l], Vec3(nx.l[l], ny.l[l], nz.l[l]), Vec3(fx.l[l], fy.l[l], fz.l[l]),
+                     Vec3(mx.l[l], my.l[l], mz.l[l]), reach_end);
+  }
+}
 
 // contact/contact_law.hpp's in_tangent_plane and evaluate_in_plane with CundallNormal (and the
 // kinematics of force_loop.cpp's pass 2), four contacts at a time: each step below is the scalar
@@ -141,20 +185,20 @@ template <bool Fixed, bool Bonds>
     const V3 moment = cross(n, ft);
 
     // Kept contact by contact, in order.
-    const Lanes nx = lanes(n.x), ny = lanes(n.y), nz = lanes(n.z), fx = lanes(on_i.x), fy = lanes(on_i.y), fz = lanes(on_i.z);
-    const Lanes mx = lanes(moment.x), my = lanes(moment.y), mz = lanes(moment.z);
-    const Lanes sx = lanes(spring.x), sy = lanes(spring.y), sz = lanes(spring.z), u = lanes(overlap);
-    for (int l = 0; l < 4 && e + l < m; ++l) {
-      a.spring[kl[l]] = Vec3(sx.l[l], sy.l[l], sz.l[l]);
-      keep_pair_result(a, kl[l], il[l], jl[l], Vec3(nx.l[l], ny.l[l], nz.l[l]), Vec3(fx.l[l], fy.l[l], fz.l[l]),
-                       Vec3(mx.l[l], my.l[l], mz.l[l]), reach_end);
-    }
+    const int count = std::min(4, m - e);
+    const __m128i larger = _mm_max_epi32(i, j);
+    if (!a.keep_results && _mm_movemask_epi8(_mm_cmplt_epi32(larger, _mm_set1_epi32(reach_end))) == 0xffff)
+      keep_loads(a, kl, il, jl, count, spring, on_i, ri * moment, rj * moment);
+    else
+      keep_one_by_one(a, kl, il, jl, count, spring, n, on_i, moment, reach_end);
     // relative_overlap_if_larger's test on every lane with the group's first `worst`: where no lane
     // passes, none can with the larger values the loop below may reach (almost every group).
     const V bar = (_mm256_set1_pd(worst) * _mm256_min_pd(ri, rj)) * _mm256_set1_pd(1 - 1e-9);
-    if (_mm256_movemask_pd(_mm256_cmp_pd(overlap, bar, _CMP_GE_OQ)) != 0)
-      for (int l = 0; l < 4 && e + l < m; ++l)
+    if (_mm256_movemask_pd(_mm256_cmp_pd(overlap, bar, _CMP_GE_OQ)) != 0) {
+      const Lanes u = lanes(overlap);
+      for (int l = 0; l < count; ++l)
         worst = std::max(worst, relative_overlap_if_larger(u.l[l], std::min(a.radius[il[l]], a.radius[jl[l]]), worst));
+    }
   }
   return worst;
 }

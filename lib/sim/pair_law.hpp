@@ -11,6 +11,7 @@
 #include "contact/contact_list.hpp"
 #include "core/types.hpp"
 #include "sim/find_contacts.hpp"
+#include "sim/load_sum.hpp"
 #include "state/materials.hpp"
 #include "state/particles.hpp"
 
@@ -30,11 +31,11 @@ struct PairLawArrays {
   Vec3* spring;
   Vec3* normal;
   ContactSum* sum;
-  Vec3* force;   // per slot: the loads summed in the force loop (BlockLoads)
-  Vec3* torque;
+  LoadSum* force;  // per slot: the loads summed in the force loop (BlockLoads)
+  LoadSum* torque;
   bool keep_results;  // normal and sum of every contact (SimParams::keep_pair_results)
 
-  PairLawArrays(const Particles& p, ContactList& pc, std::vector<Vec3>& force_, std::vector<Vec3>& torque_, bool keep)
+  PairLawArrays(const Particles& p, ContactList& pc, std::vector<LoadSum>& force_, std::vector<LoadSum>& torque_, bool keep)
       : v(p.v.data()), w(p.w.data()), radius(p.radius.data()), mass(p.mass.data()), material(p.material.data()),
         fixed(p.fixed.data()), slot_i(pc.slot_i.data()), slot_j(pc.slot_j.data()), bonded(pc.bonded.data()),
         spring(pc.spring.data()), normal(pc.normal.data()), sum(pc.sum.data()), force(force_.data()), torque(torque_.data()),
@@ -51,10 +52,10 @@ inline void keep_pair_result(const PairLawArrays& a, long k, int i, int j, const
   if (a.keep_results) a.normal[k] = n;
   if (a.keep_results || !summed_here) a.sum[k] = {on_i, moment};
   if (summed_here) {
-    a.force[i] += on_i;  // eq. 2.31-2.32
-    a.force[j] -= on_i;
-    a.torque[i] += a.radius[i] * moment;  // eq. 2.33-2.34: a n x f_t for i and j alike
-    a.torque[j] += a.radius[j] * moment;
+    a.force[i].v += on_i;  // eq. 2.31-2.32
+    a.force[j].v -= on_i;
+    a.torque[i].v += a.radius[i] * moment;  // eq. 2.33-2.34: a n x f_t for i and j alike
+    a.torque[j].v += a.radius[j] * moment;
   }
 }
 

@@ -7,6 +7,7 @@
 #include "contact/contact_list.hpp"
 #include "sim/block_times.hpp"
 #include "sim/energy_audit.hpp"
+#include "sim/load_sum.hpp"
 #include "search/neighbour_list.hpp"
 #include "state/materials.hpp"
 #include "state/particles.hpp"
@@ -163,7 +164,7 @@ class Simulation {
   BlockTimes force_times_, integrate_times_;  // per load block, its time in each loop at the last step
   std::vector<long> block_done_;  // per load block, the epoch of the force loop that last summed it
   long force_epoch_ = 0;          // force loops run (BlockLoads::epoch)
-  std::vector<Vec3> block_force_, block_torque_;  // per slot, the sums of the force loop (BlockLoads)
+  std::vector<LoadSum> block_force_, block_torque_;  // per slot, the sums of the force loop (BlockLoads)
   bool loads_zeroed_ = false;  // integrate() cleared block_force_ and block_torque_ as it read them
   std::vector<int> wall_runs_;  // first wall candidate of each particle, then the end
   std::vector<int> wall_run_order_, wall_block_first_;  // ForceLoopInput's
