@@ -269,7 +269,7 @@ void set_lagging_thread_for_tests(int thread, int microseconds) { lagging = {thr
 
 long automatic_load_reach(long particles, long block) {
   const double layer = std::cbrt(static_cast<double>(particles) * particles);  // n^(2/3)
-  return std::clamp(static_cast<long>(std::ceil(1.2 * layer / static_cast<double>(block))), 4L, 48L);
+  return std::clamp(static_cast<long>(std::ceil(1.2 * layer / static_cast<double>(block))), 6L, 48L);
 }
 
 void counted_wall_touches(const Particles& p, const std::vector<WallGeometry>& geometry, const ContactList& wc, int first,

@@ -62,10 +62,13 @@ struct BlockLoads {
 
 // SimParams::load_reach 0 (automatic) for `particles` particles in blocks of `block` slots: about
 // 1.2 layers of spheres of a cube of them (storage is sorted along z, then y, then x:
-// Simulation::sort_storage), at least 4 and at most 48 blocks. So the contacts between layers lie
+// Simulation::sort_storage), at least 6 and at most 48 blocks. So the contacts between layers lie
 // within reach at any size (10^6 spheres on a lattice, one thread: 21.5 s against 25.3 s with a
 // reach of 24 blocks, whose vertical contacts were summed in the integration); at 48 blocks of 256
-// a tile and the next still fit in a core's cache (2 MB).
+// a tile and the next still fit in a core's cache (2 MB). At least 6: a bed wider than high holds
+// more per layer than a cube (the settle of 10^4 settles into layers of about 1,000 spheres: with
+// 4 blocks, 5 % slower on one thread and 4 % on two; 8 blocks: as 6 on one thread, slower on two,
+// whose runs then share tiles; the chute and a lattice of 10^4 the same with 5, 8 or 12).
 long automatic_load_reach(long particles, long block);
 
 // Tests only: thread `thread` of the pair loop pauses `microseconds` before each of its blocks, so
