@@ -293,7 +293,7 @@ TEST(BlockTimes, RunsCoverEveryBlockOnceAndEndNearestTheirShare) {
   BlockTimes t;
   t.fit(4, [](long) { return 1L; });
   EXPECT_EQ(t.total, 4);
-  t.ns = {10, 10, 10, 70};
+  t.ticks = {10, 10, 10, 70};
   t.fit(4, [](long) { return 1L; });  // same count: the times stay
   EXPECT_EQ(t.total, 100);
   // Two threads: 30 / 70 is the nearest split to 50 / 50 that keeps the runs contiguous.
@@ -301,7 +301,7 @@ TEST(BlockTimes, RunsCoverEveryBlockOnceAndEndNearestTheirShare) {
   EXPECT_EQ(t.run_start(1, 2), 3);
   EXPECT_EQ(t.run_start(2, 2), 4);
   // Even times: even runs; more threads than blocks: some runs are empty, none overlap.
-  t.ns.assign(6, 5);
+  t.ticks.assign(6, 5);
   t.fit(6, [](long) { return 1L; });
   EXPECT_EQ(t.run_start(1, 3), 2);
   EXPECT_EQ(t.run_start(2, 3), 4);
@@ -316,7 +316,7 @@ TEST(BlockTimes, RunsCoverEveryBlockOnceAndEndNearestTheirShare) {
     EXPECT_EQ(t.run_start(threads, threads), 6);
   }
   t.fit(2, [](long b) { return 7 + b; });  // the count changed: the estimates
-  EXPECT_EQ(t.ns, (std::vector<long>{7, 8}));
+  EXPECT_EQ(t.ticks, (std::vector<long>{7, 8}));
 }
 
 }  // namespace

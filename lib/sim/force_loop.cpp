@@ -225,14 +225,14 @@ double block_forces(const ForceLoopInput& in, ContactList& pc, ContactList& wc, 
           for (long o = std::max(0L, b - reach); o <= std::min(blocks - 1, b + reach); ++o)
             if ((o < start || o >= end) && added_before(o, b, tile)) wait_until_done(out.done, o, tick);
           if (t == lagging.thread) std::this_thread::sleep_for(std::chrono::microseconds(lagging.microseconds));
-          const double tb = omp_get_wtime();
+          const long tb = BlockTimes::now();
           const int reach_end = static_cast<int>(std::min(slots, (b + reach + 1) * out.block));
           for (long first = out.first[b]; first < out.first[b + 1]; first += kChunk) {
             const long last = std::min(out.first[b + 1], first + kChunk);
             worst = std::max(worst, pair_chunk<Normal, Periodic, Fixed>(chunk, first, last, reach_end));
           }
           std::atomic_ref<long>(out.done[b]).store(tick, std::memory_order_release);
-          out.times.record(b, omp_get_wtime() - tb);
+          out.times.record(b, tb);
         }
       }
     // Then the wall contacts of the run's particles, block by block, each particle's after all its
@@ -246,10 +246,10 @@ double block_forces(const ForceLoopInput& in, ContactList& pc, ContactList& wc, 
       for (long o = std::max(0L, start - reach); o < start; ++o) wait_until_done(out.done, o, tick);
       for (long b = start; b < end; ++b) {
         if (in.wall_block_first[b] == in.wall_block_first[b + 1]) continue;
-        const double tb = omp_get_wtime();
+        const long tb = BlockTimes::now();
         for (int q = in.wall_block_first[b]; q < in.wall_block_first[b + 1]; ++q)
           worst = std::max(worst, wall_run<Normal>(in, wc, out, in.wall_run_order[q], mine));
-        out.times.add(b, omp_get_wtime() - tb);
+        out.times.add(b, tb);
       }
     }
   }

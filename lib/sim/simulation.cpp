@@ -353,10 +353,10 @@ void Simulation::integrate(bool any_fixed) {
     const long start = integrate_times_.run_start(t, threads), end = integrate_times_.run_start(t + 1, threads);
 #pragma omp barrier  // every run is set before any block's time changes
     for (long b = start; b < end; ++b) {
-      const double tb = omp_get_wtime();
+      const long tb = BlockTimes::now();
       const long lo = b * block, hi = std::min(n, lo + block);
       bad = std::max(bad, move_particles(a, c, lo, hi));
-      integrate_times_.record(b, omp_get_wtime() - tb);
+      integrate_times_.record(b, tb);
     }
   }
   loads_zeroed_ = true;  // move_particles cleared every particle's
