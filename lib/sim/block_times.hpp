@@ -15,8 +15,10 @@
 namespace dem {
 
 struct BlockTimes {
-  std::vector<long> ticks;  // per block: its time at the last step [ticks of now()]
-  long total = 0;           // their sum, as of the last fit()
+  std::vector<long> ticks;  // per block: its latest time [ticks of now()], written as blocks end
+  std::vector<long> fitted; // the times the runs are cut from: ticks as of the last fit() (so no
+                            // thread need wait for the others to cut theirs before timing a block)
+  long total = 0;           // their sum
 
   // The clock of block times, in ticks of some fixed unit (only their ratios are used): the
   // processor's time-stamp counter where there is one, else steady_clock's nanoseconds.
@@ -38,16 +40,17 @@ struct BlockTimes {
       ticks.resize(blocks);
       for (long b = 0; b < blocks; ++b) ticks[b] = initial(b);
     }
+    fitted = ticks;
     total = 0;
-    for (long t : ticks) total += t;
+    for (long t : fitted) total += t;
   }
 
   // The first block of the run of thread u of `threads` (u = threads: the end): each run ends at
-  // the block boundary nearest its share of the total. Read before any thread times a block anew.
+  // the block boundary nearest its share of the total.
   long run_start(long u, long threads) const {
-    const long blocks = static_cast<long>(ticks.size());
+    const long blocks = static_cast<long>(fitted.size());
     long b = 0;
-    for (long before = 0; b < blocks && (u == threads || before + ticks[b] / 2 < total * u / threads); ++b) before += ticks[b];
+    for (long before = 0; b < blocks && (u == threads || before + fitted[b] / 2 < total * u / threads); ++b) before += fitted[b];
     return b;
   }
 

@@ -209,7 +209,6 @@ double block_forces(const ForceLoopInput& in, ContactList& pc, ContactList& wc, 
     // Each thread takes a contiguous run of blocks holding about its share of the last step's
     // time (sim/block_times.hpp), which may begin or end inside a tile.
     const long start = out.times.run_start(t, threads), end = out.times.run_start(t + 1, threads);
-#pragma omp barrier  // every run is set before any block's time changes
     // Two phases: the even tiles, then the odd ones (BlockLoads). In each, a thread takes its tiles
     // from the last down and each tile's blocks in order: the tile it shares with the next thread
     // comes first, the one it shares with the one before last, so that neither waits long. A block

@@ -351,7 +351,6 @@ void Simulation::integrate(bool any_fixed) {
   {
     const long threads = omp_get_num_threads(), t = omp_get_thread_num();
     const long start = integrate_times_.run_start(t, threads), end = integrate_times_.run_start(t + 1, threads);
-#pragma omp barrier  // every run is set before any block's time changes
     for (long b = start; b < end; ++b) {
       const long tb = BlockTimes::now();
       const long lo = b * block, hi = std::min(n, lo + block);
