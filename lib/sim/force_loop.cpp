@@ -161,7 +161,7 @@ double wall_run(const ForceLoopInput& in, ContactList& wc, BlockLoads& out, long
     const double dist = to_wall[e].norm();
     ContactKinematics c;
     // A centre exactly on the wall has no direction to the contact point: use the plane normal.
-    c.n = dist > 0 ? Vec3(to_wall[e] / dist) : g.normal;
+    c.n = dist > 0 ? Vec3(to_wall[e] * (1.0 / dist)) : g.normal;  // one division, as the pair contacts
     c.overlap = p.radius[i] - dist;  // eq. 2.17
     // eq. 2.18: the velocity of the wall's material at the contact point enters.
     c.v_rel = g.velocity_of(p.x[i] + to_wall[e]) - p.v[i];

@@ -57,7 +57,14 @@ struct WallGeometry {
   Vec3 velocity = Vec3::Zero();  // of the axis point, at t^{n-1/2} like the particles' velocities
   Vec3 spin = Vec3::Zero();      // ω a [rad/s]
   Vec3 centre = Vec3::Zero();    // the axis point c + d now [m]
-  Vec3 velocity_of(const Vec3& x) const { return velocity + spin.cross(x - centre); }
+  // velocity + spin x (x - centre), written out by component: the same operations as Eigen's
+  // cross product and sum, kept in registers (Eigen's went through memory, stored a double at a time
+  // and read back two at a time: a stalled store forwarding per wall contact).
+  Vec3 velocity_of(const Vec3& x) const {
+    const double rx = x.x() - centre.x(), ry = x.y() - centre.y(), rz = x.z() - centre.z();
+    return Vec3(velocity.x() + (spin.y() * rz - spin.z() * ry), velocity.y() + (spin.z() * rx - spin.x() * rz),
+                velocity.z() + (spin.x() * ry - spin.y() * rx));
+  }
 };
 
 // Fills g with wall w at time t; velocities at t - dt/2 (the particles' half step).
