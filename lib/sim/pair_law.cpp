@@ -124,7 +124,21 @@ template <bool Fixed, bool Bonds>
   const PairParams* only[4] = {&materials.pair(0, 0), &materials.pair(0, 0), &materials.pair(0, 0), &materials.pair(0, 0)};
   LawParams law(only);
   double worst = 0;
+  // Fetched into the cache ahead: the velocities of both particles of the contacts kAhead on (pass
+  // 1 read only their positions). Settle of 10^4, one thread: 4 % off the step, where a random
+  // packing's particles no longer fit the core's cache; i's alone or j's alone: nothing. Chute,
+  // lattice of 10^5 and two threads: the same within the noise.
+  constexpr int kAhead = 8;
   for (int e = 0; e < m; e += 4) {
+    if (e + kAhead + 4 <= m)
+      for (int l = 0; l < 4; ++l) {
+        const long ahead = found.contact[e + kAhead + l];
+        const int i_ahead = a.slot_i[ahead], j_ahead = a.slot_j[ahead];
+        _mm_prefetch(reinterpret_cast<const char*>(a.v + i_ahead), _MM_HINT_T0);
+        _mm_prefetch(reinterpret_cast<const char*>(a.w + i_ahead), _MM_HINT_T0);
+        _mm_prefetch(reinterpret_cast<const char*>(a.v + j_ahead), _MM_HINT_T0);
+        _mm_prefetch(reinterpret_cast<const char*>(a.w + j_ahead), _MM_HINT_T0);
+      }
     const __m128i k = _mm_loadu_si128(reinterpret_cast<const __m128i*>(found.contact + e));
     const __m128i i = gather(a.slot_i, k), j = gather(a.slot_j, k);
     alignas(16) int kl[4], il[4], jl[4];
