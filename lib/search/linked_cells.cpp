@@ -3,7 +3,6 @@
 #include <omp.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <sstream>
 
@@ -186,23 +185,33 @@ void LinkedCells::find_near_pairs(const Particles& p, const PeriodicBox& box, st
       }
     }
   }
-  // Grouped by the smaller slot (a counting sort, the parts' entries placed in parallel: in any
-  // order within a group), then each group put in key order: an order that depends on neither the
-  // threads nor the cells.
+  // Grouped by the smaller slot (a counting sort: in any order within a group), then each group put
+  // in key order: an order that depends on neither the threads nor the cells. Each of up to four
+  // threads owns a range of slots and reads every part for its own. (With atomic counters, whose
+  // cache lines the cores passed back and forth, the settle of 10^4 took 4 % longer on two threads:
+  // 6.31 against 6.05 s, 20,000 steps; on one thread the same.)
   const long n = static_cast<long>(p.size());
   group_start.assign(n + 1, 0);
   auto lower = [](const FoundContact& f) { return std::min(f.slot_i, f.slot_j); };
-#pragma omp parallel for schedule(static, 1)
-  for (int t = 0; t < threads; ++t)
-    for (const FoundContact& f : parts_[t]) std::atomic_ref<int>(group_start[lower(f) + 1]).fetch_add(1, std::memory_order_relaxed);
-  for (long s = 0; s < n; ++s) group_start[s + 1] += group_start[s];
-  out.resize(group_start[n]);
-  std::vector<int> fill(group_start.begin(), group_start.end() - 1);
-#pragma omp parallel for schedule(static, 1)
-  for (int t = 0; t < threads; ++t) {
-    for (const FoundContact& f : parts_[t]) out[std::atomic_ref<int>(fill[lower(f)]).fetch_add(1, std::memory_order_relaxed)] = f;
-    std::vector<FoundContact>().swap(parts_[t]);  // kept, they would double the memory of the found pairs
+#pragma omp parallel num_threads(std::min(threads, 4))
+  {
+    const long owners = omp_get_num_threads(), t = omp_get_thread_num();
+    const int lo = static_cast<int>(n * t / owners), hi = static_cast<int>(n * (t + 1) / owners);
+    for (const std::vector<FoundContact>& part : parts_)
+      for (const FoundContact& f : part)
+        if (const int s = lower(f); s >= lo && s < hi) ++group_start[s + 1];
+#pragma omp barrier
+#pragma omp single
+    {
+      for (long s = 0; s < n; ++s) group_start[s + 1] += group_start[s];
+      out.resize(group_start[n]);
+    }
+    std::vector<int> fill(group_start.begin() + lo, group_start.begin() + hi);
+    for (const std::vector<FoundContact>& part : parts_)
+      for (const FoundContact& f : part)
+        if (const int s = lower(f); s >= lo && s < hi) out[fill[s - lo]++] = f;
   }
+  for (std::vector<FoundContact>& part : parts_) std::vector<FoundContact>().swap(part);  // kept, they would double the memory
 #pragma omp parallel for schedule(static, 1024)
   for (long s = 0; s < n; ++s) sort_small(out.data() + group_start[s], out.data() + group_start[s + 1]);
 }
