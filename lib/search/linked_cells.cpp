@@ -153,8 +153,9 @@ void LinkedCells::find_near_pairs(const Particles& p, const PeriodicBox& box, st
     for (int h = 0; h < 13; ++h) offset[h] = (kHalf[h][2] * dims[1] + kHalf[h][1]) * dims[0] + kHalf[h][0];
     // There, the half shell is five runs of consecutive cells (along x, a row's cells are
     // consecutive indices): (1, 0, 0), then x - 1 to x + 1 in the rows (y + 1, z), (y - 1, z + 1),
-    // (y, z + 1), (y + 1, z + 1); each run's slots are one range of cell_slots. (Cell by cell, the
-    // bounds of 13 cells of one or two particles each were half the search's time on a settled bed.)
+    // (y, z + 1), (y + 1, z + 1); each run's slots are one range of cell_slots. (Cell by cell, with
+    // one or two particles per cell: 1,554 perf samples of this loop on the settle of 10^4, one
+    // thread, 20,000 steps, against 1,216.)
     const long row[5] = {offset[0], offset[1], offset[4], offset[7], offset[10]};
     const long row_cells[5] = {1, 3, 3, 3, 3};
     const int* const cell_first = cell_first_.data();
