@@ -300,6 +300,10 @@ TEST(BlockTimes, RunsCoverEveryBlockOnceAndEndNearestTheirShare) {
   EXPECT_EQ(t.run_start(0, 2), 0);
   EXPECT_EQ(t.run_start(1, 2), 3);
   EXPECT_EQ(t.run_start(2, 2), 4);
+  // Blocks timed anew during the loop leave the runs as fit() cut them (a thread may time its
+  // first block before another has cut its run): here the run would begin at block 4.
+  t.ticks[3] = 1;
+  EXPECT_EQ(t.run_start(1, 2), 3);
   // Even times: even runs; more threads than blocks: some runs are empty, none overlap.
   t.ticks.assign(6, 5);
   t.fit(6, [](long) { return 1L; });

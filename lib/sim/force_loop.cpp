@@ -241,7 +241,7 @@ double block_forces(const ForceLoopInput& in, ContactList& pc, ContactList& wc, 
     // threads were only 1.6 times as fast as one; settle 10^4, two threads: 6 % off the step.)
     if (in.wall_runs.size() > 1) {
       static thread_local WallScratch scratch;
-      WallScratch& mine = scratch;
+      WallScratch& mine = scratch;  // the thread's own, looked up once (each use of a thread_local looks it up)
       for (long o = std::max(0L, start - reach); o < start; ++o) wait_until_done(out.done, o, tick);
       for (long b = start; b < end; ++b) {
         if (in.wall_block_first[b] == in.wall_block_first[b + 1]) continue;

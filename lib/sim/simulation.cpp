@@ -33,7 +33,7 @@ void Simulation::advance() {
     loads_zeroed_ = false;
   }
   // The last integration zeroed the loads as it read them (saves the force loop a pass over
-  // 48 bytes per particle); any other way here (the first step, a failed step, a new particle
+  // 64 bytes per particle); any other way here (the first step, a failed step, a new particle
   // count) the force loop zeroes them.
   BlockLoads loads{params.load_block, reach, block_first_, force_times_, block_done_, ++force_epoch_,
                    block_force_, block_torque_, loads_zeroed_};
