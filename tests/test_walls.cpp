@@ -23,6 +23,30 @@ TEST(WallGeometry, FaceEdgeAndVertexRegions) {
   EXPECT_EQ(closest(Vec3(1.5, -0.1, 0)), Vec3(1, 0, 0)) << "vertex (1, 0, 0)";
 }
 
+// closest_point on a placed element reads the edges' inward normals computed when it was placed:
+// they must follow the element as it moves (here a quad turning about a tilted axis) and give the
+// polygon's own closest point, bit for bit, inside and outside it. Each point is also checked
+// against the vertices: none is nearer than the closest point (tolerance: round-off, 1e-15).
+TEST(WallGeometry, PlacedElementsClosestPointsFollowTheirMotion) {
+  WallMotion turning;
+  turning.centre = Vec3(0.3, 0.2, 0);
+  turning.axis = Vec3(1, 1, 1).normalized();
+  turning.angular_speed = 2.0;
+  const Wall w{"w", 0, {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 0.5, 0), Vec3(0, 0.5, 0)}, turning};
+  WallGeometry g;
+  for (double t : {0.0, 0.4, 1.3}) {
+    place_wall(w, t, 1e-3, g);
+    for (double a = -0.5; a <= 1.5; a += 0.25)
+      for (double b = -0.5; b <= 1.0; b += 0.25)
+        for (double c : {-0.3, 0.2}) {
+          const Vec3 p = w.motion.place(Vec3(a, b, c), t);
+          const Vec3 q = closest_point(g, p);
+          EXPECT_EQ(q, closest_point_on_polygon(g.vertices.data(), g.count, g.normal, p)) << "t = " << t << ", p = " << p.transpose();
+          for (int v = 0; v < g.count; ++v) EXPECT_LE((q - p).norm(), (g.vertices[v] - p).norm() + 1e-15);
+        }
+  }
+}
+
 TEST(WallGeometry, PolygonChecks) {
   EXPECT_EQ(polygon_problem(kTriangle), "");
   EXPECT_NE(polygon_problem({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(1, 1, 0)}), "") << "bow-tie quad";

@@ -86,6 +86,7 @@ void place_wall(const Wall& w, double t, double dt, WallGeometry& g) {
     for (int v = 0; v < g.count; ++v) g.vertices[v] = w.base[v] + d;
   }
   g.normal = (g.vertices[1] - g.vertices[0]).cross(g.vertices[2] - g.vertices[0]).normalized();
+  inward_normals(g.vertices.data(), g.count, g.normal, g.inward.data());
   // At t^{n-1/2}, the time of the particles' velocities it is compared with (eq. 2.18).
   g.velocity = m.velocity_at(t - 0.5 * dt);
   g.spin = m.angular_speed * m.axis;
@@ -100,20 +101,16 @@ Vec3 closest_on_segment(const Vec3& a, const Vec3& b, const Vec3& p) {
   s = std::clamp(s, 0.0, 1.0);
   return a + s * ab;
 }
-}  // namespace
 
-Vec3 closest_point_on_polygon(const Vec3* v, int n, const Vec3& nrm, const Vec3& p) {
+// eq. 2.4-2.5 with the edges' inward normals (inward_normals): the projection on the plane if it
+// lies on the inner side of every edge, else the nearest point of the boundary.
+Vec3 closest_point_with(const Vec3* v, const Vec3* inward, int n, const Vec3& nrm, const Vec3& p) {
   const Vec3 q = p - (p - v[0]).dot(nrm) * nrm;  // projection on the plane
-  // The vertex after k, without `% n` (an integer division per edge: this function's samples on
-  // the settle of 10^4 went from 1,669 to 1,488).
-  const auto next = [n](int k) { return k + 1 < n ? k + 1 : 0; };
   bool inside = true;
-  for (int k = 0; k < n && inside; ++k) {
-    const Vec3& a = v[k];
-    const Vec3& b = v[next(k)];
-    inside = (b - a).cross(q - a).dot(nrm) >= 0;  // vertices are counter-clockwise about nrm
-  }
+  for (int k = 0; k < n && inside; ++k) inside = (q - v[k]).dot(inward[k]) >= 0;
   if (inside) return q;
+  // The vertex after k, without `% n` (an integer division per edge).
+  const auto next = [n](int k) { return k + 1 < n ? k + 1 : 0; };
   Vec3 best = closest_on_segment(v[0], v[1], p);
   double best_d2 = (best - p).squaredNorm();
   for (int k = 1; k < n; ++k) {
@@ -123,9 +120,20 @@ Vec3 closest_point_on_polygon(const Vec3* v, int n, const Vec3& nrm, const Vec3&
   }
   return best;
 }
+}  // namespace
+
+void inward_normals(const Vec3* v, int n, const Vec3& nrm, Vec3* inward) {
+  for (int k = 0; k < n; ++k) inward[k] = nrm.cross(v[k + 1 < n ? k + 1 : 0] - v[k]);
+}
+
+Vec3 closest_point_on_polygon(const Vec3* v, int n, const Vec3& nrm, const Vec3& p) {
+  std::array<Vec3, 4> inward;
+  inward_normals(v, n, nrm, inward.data());
+  return closest_point_with(v, inward.data(), n, nrm, p);
+}
 
 Vec3 closest_point(const WallGeometry& g, const Vec3& p) {
-  return closest_point_on_polygon(g.vertices.data(), g.count, g.normal, p);
+  return closest_point_with(g.vertices.data(), g.inward.data(), g.count, g.normal, p);
 }
 
 std::vector<Vec3> box_face(const Vec3& lo, const Vec3& hi, int axis, bool max_side) {
