@@ -14,13 +14,13 @@
 namespace dem {
 namespace {
 
-// Every overlapping pair, between nearest images where `box` is periodic; two held particles never
-// interact.
-std::vector<FoundContact> brute_force(const Particles& p, const PeriodicBox& box = {}) {
+// Every overlapping pair (closer than the sum of radii + `margin`), between nearest images where
+// `box` is periodic; two held particles never interact.
+std::vector<FoundContact> brute_force(const Particles& p, const PeriodicBox& box = {}, double margin = 0) {
   std::vector<FoundContact> out;
   for (std::size_t i = 0; i < p.size(); ++i)
     for (std::size_t j = i + 1; j < p.size(); ++j) {
-      const double r = p.radius[i] + p.radius[j];
+      const double r = p.radius[i] + p.radius[j] + margin;
       if (p.fixed[i] && p.fixed[j]) continue;
       if (box.nearest(p.x[i] - p.x[j]).squaredNorm() < r * r)
         out.push_back({std::min(p.id[i], p.id[j]), std::max(p.id[i], p.id[j]), int(i), int(j)});
@@ -44,37 +44,52 @@ TEST_P(SearchMatchesBruteForce, PolydisperseRandomCloud) {
   for (int k = 0; k < n; ++k) p.add(ids[k], Vec3(u(rng), u(rng), 0.3 * u(rng)), 0.002 + 0.018 * u(rng), 1000, 0);
   // A far-away particle stretches the bounding box (tests the grid-size cap).
   p.add(5, Vec3(50, -20, 3), 0.01, 1000, 0);
-  std::vector<FoundContact> fast;
-  std::vector<int> groups;
-  LinkedCells cells;
-  cells.find_near_pairs(p, PeriodicBox{}, fast, groups);
-  for (const FoundContact& c : fast) EXPECT_LT(c.key_i, c.key_j);
-  // Found grouped by the smaller slot, in key order within a group, as place_by_storage would put
-  // them; groups[s] is where slot s's group starts.
-  ASSERT_EQ(groups.size(), p.size() + 1);
-  EXPECT_EQ(groups.back(), static_cast<int>(fast.size()));
-  for (std::size_t s = 0; s < p.size(); ++s)
-    for (int k = groups[s]; k < groups[s + 1]; ++k) {
-      EXPECT_EQ(std::min(fast[k].slot_i, fast[k].slot_j), static_cast<int>(s));
-      if (k > groups[s]) EXPECT_LT(fast[k - 1], fast[k]);
+  for (int k = 0; k < n; k += 7) p.fixed[k] = 1;  // pairs of two held particles are skipped
+  // And a dense cloud of equal spheres (several to a search cell: most spheres' neighbours come in
+  // groups of four and a remainder).
+  Particles dense;
+  for (int k = 0; k < n; ++k) dense.add(ids[k], Vec3(0.3 * u(rng), 0.3 * u(rng), 0.3 * u(rng)), 0.01, 1000, 0);
+  // Contacts and candidates (a margin, the skin), by the plain loops and the four-wide ones.
+  for (const Particles* cloud : {&p, &dense})
+  for (double margin : {0.0, 0.004})
+    for (bool simd : {false, simd_loops_available()}) {
+      const Particles& p = *cloud;
+      SCOPED_TRACE(testing::Message() << (cloud == &dense ? "dense" : "polydisperse") << ", margin " << margin
+                                      << (simd ? ", four-wide" : ", plain"));
+      set_simd_loops(simd);
+      std::vector<FoundContact> fast;
+      std::vector<int> groups;
+      LinkedCells cells;
+      cells.find_near_pairs(p, PeriodicBox{}, fast, groups, margin);
+      set_simd_loops(true);
+      for (const FoundContact& c : fast) EXPECT_LT(c.key_i, c.key_j);
+      // Found grouped by the smaller slot, in key order within a group, as place_by_storage would
+      // put them; groups[s] is where slot s's group starts.
+      ASSERT_EQ(groups.size(), p.size() + 1);
+      EXPECT_EQ(groups.back(), static_cast<int>(fast.size()));
+      for (std::size_t s = 0; s < p.size(); ++s)
+        for (int k = groups[s]; k < groups[s + 1]; ++k) {
+          EXPECT_EQ(std::min(fast[k].slot_i, fast[k].slot_j), static_cast<int>(s));
+          if (k > groups[s]) EXPECT_LT(fast[k - 1], fast[k]);
+        }
+      std::vector<FoundContact> by_key = fast;
+      std::sort(by_key.begin(), by_key.end());
+      std::vector<int> count;
+      KeyOrder place;
+      place_by_storage(by_key, p.size(), count, place);
+      for (std::size_t r = 0; r < by_key.size(); ++r) {
+        EXPECT_EQ(fast[place[r]].key_i, by_key[r].key_i);
+        EXPECT_EQ(fast[place[r]].key_j, by_key[r].key_j);
+      }
+      fast = by_key;
+      const std::vector<FoundContact> slow = brute_force(p, PeriodicBox{}, margin);
+      ASSERT_GT(slow.size(), 100u);
+      ASSERT_EQ(fast.size(), slow.size());
+      for (std::size_t k = 0; k < fast.size(); ++k) {
+        EXPECT_EQ(fast[k].key_i, slow[k].key_i);
+        EXPECT_EQ(fast[k].key_j, slow[k].key_j);
+      }
     }
-  std::vector<FoundContact> by_key = fast;
-  std::sort(by_key.begin(), by_key.end());
-  std::vector<int> count;
-  KeyOrder place;
-  place_by_storage(by_key, p.size(), count, place);
-  for (std::size_t r = 0; r < by_key.size(); ++r) {
-    EXPECT_EQ(fast[place[r]].key_i, by_key[r].key_i);
-    EXPECT_EQ(fast[place[r]].key_j, by_key[r].key_j);
-  }
-  fast = by_key;
-  const std::vector<FoundContact> slow = brute_force(p);
-  ASSERT_GT(slow.size(), 100u);
-  ASSERT_EQ(fast.size(), slow.size());
-  for (std::size_t k = 0; k < fast.size(); ++k) {
-    EXPECT_EQ(fast[k].key_i, slow[k].key_i);
-    EXPECT_EQ(fast[k].key_j, slow[k].key_j);
-  }
 }
 
 INSTANTIATE_TEST_SUITE_P(Seeds, SearchMatchesBruteForce, ::testing::Values(1, 2, 3));

@@ -7,21 +7,22 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "sim/simd.hpp"
 
 namespace dem {
 
 namespace {
 // Appends the parts to `out`, in order, and frees them: kept, they would double the memory of the
 // found pairs at every rebuild.
-void join_and_release(std::vector<std::vector<FoundContact>>& parts, std::vector<FoundContact>& out) {
+void join_and_release(std::vector<SearchPart>& parts, std::vector<FoundContact>& out) {
   const long count = static_cast<long>(parts.size());
   std::vector<std::size_t> at(count + 1, out.size());
-  for (long c = 0; c < count; ++c) at[c + 1] = at[c] + parts[c].size();
+  for (long c = 0; c < count; ++c) at[c + 1] = at[c] + parts[c].found.size();
   out.resize(at[count]);
 #pragma omp parallel for schedule(static)
   for (long c = 0; c < count; ++c) {
-    std::copy(parts[c].begin(), parts[c].end(), out.begin() + at[c]);
-    std::vector<FoundContact>().swap(parts[c]);
+    std::copy(parts[c].found.begin(), parts[c].found.end(), out.begin() + at[c]);
+    std::vector<FoundContact>().swap(parts[c].found);
   }
 }
 
@@ -37,6 +38,21 @@ void sort_small(FoundContact* first, FoundContact* last) {
     *r = f;
   }
 }
+
+#ifdef DEM_SIMD_LOOPS
+// Which of the particles at slots[0..3] may lie within reach of particle a: a bit per lane where
+// |x_a - x_b|^2 < (r_a + r_b + margin)^2, with a margin far above round-off (the plain test then
+// decides each of those, so that both loops find exactly the same pairs).
+[[gnu::target("avx2")]] inline int maybe_near_four(const Vec3* x, const double* radius, int a, const int* slots, double margin) {
+  __m256d xb, yb, zb;
+  simd::load_four(x, slots[0], slots[1], slots[2], slots[3], xb, yb, zb);
+  const __m256d dx = _mm256_set1_pd(x[a].x()) - xb, dy = _mm256_set1_pd(x[a].y()) - yb, dz = _mm256_set1_pd(x[a].z()) - zb;
+  const __m256d d2 = (dx * dx + dy * dy) + dz * dz;
+  const __m128i b = _mm_loadu_si128(reinterpret_cast<const __m128i*>(slots));
+  const __m256d reach = (_mm256_set1_pd(radius[a]) + simd::gather(radius, b)) + _mm256_set1_pd(margin);
+  return _mm256_movemask_pd(_mm256_cmp_pd(d2, reach * reach * _mm256_set1_pd(1 + 1e-12), _CMP_LT_OQ));
+}
+#endif
 
 }  // namespace
 
@@ -130,7 +146,7 @@ void LinkedCells::find_near_pairs(const Particles& p, const PeriodicBox& box, st
   const Index* const id = p.id.data();
 #pragma omp parallel num_threads(threads)
   {
-    std::vector<FoundContact>& mine = parts_[omp_get_thread_num()];
+    std::vector<FoundContact>& mine = parts_[omp_get_thread_num()].found;
     mine.clear();
     auto test = [&, x, radius, fixed, id](int a, int b) {
       if (both_held(fixed[a], fixed[b])) return;
@@ -160,6 +176,9 @@ void LinkedCells::find_near_pairs(const Particles& p, const PeriodicBox& box, st
     const long row_cells[5] = {1, 3, 3, 3, 3};
     const int* const cell_first = cell_first_.data();
     const int* const cell_slots = cell_slots_.data();
+    // The slots of those five runs, one after the other (each thread's own, kept across cells).
+    std::vector<int>& around = parts_[omp_get_thread_num()].around;
+    const bool simd = simd_loops_on();
 #pragma omp for schedule(dynamic, 64)
     for (long c = 0; c < ncell; ++c) {
       const int first = cell_first[c], last = cell_first[c + 1];
@@ -167,11 +186,29 @@ void LinkedCells::find_near_pairs(const Particles& p, const PeriodicBox& box, st
       for (int m = first; m < last; ++m)
         for (int o = m + 1; o < last; ++o) test(cell_slots[m], cell_slots[o]);
       if (!periodic) {
-        for (int r = 0; r < 5; ++r) {
-          const int begin = cell_first[c + row[r]], end = cell_first[c + row[r] + row_cells[r]];
-          for (int m = first; m < last; ++m)
-            for (int o = begin; o < end; ++o) test(cell_slots[m], cell_slots[o]);
+        around.clear();
+        for (int r = 0; r < 5; ++r)
+          around.insert(around.end(), cell_slots + cell_first[c + row[r]], cell_slots + cell_first[c + row[r] + row_cells[r]]);
+        const int count = static_cast<int>(around.size());
+#ifdef DEM_SIMD_LOOPS
+        // Four at a time: a pre-test of the distances (maybe_near_four), the plain test on those
+        // that pass it. (The settle of 10^4 rebuilds its list every 40 steps; one at a time, the
+        // search was 8 % of its time.)
+        if (simd && count >= 4) {
+          const int any = around[0];
+          around.insert(around.end(), 3, any);  // lanes past the end: masked out
+          for (int m = first; m < last; ++m) {
+            const int a = cell_slots[m];
+            for (int o = 0; o < count; o += 4) {
+              int hits = maybe_near_four(x, radius, a, around.data() + o, margin) & ((1 << std::min(4, count - o)) - 1);
+              for (; hits; hits &= hits - 1) test(a, around[o + __builtin_ctz(hits)]);
+            }
+          }
+          continue;
         }
+#endif
+        for (int m = first; m < last; ++m)
+          for (int o = 0; o < count; ++o) test(cell_slots[m], around[o]);
         continue;
       }
       // The cell's coordinates, to wrap its neighbours around the periods.
@@ -198,8 +235,8 @@ void LinkedCells::find_near_pairs(const Particles& p, const PeriodicBox& box, st
   {
     const long owners = omp_get_num_threads(), t = omp_get_thread_num();
     const int lo = static_cast<int>(n * t / owners), hi = static_cast<int>(n * (t + 1) / owners);
-    for (const std::vector<FoundContact>& part : parts_)
-      for (const FoundContact& f : part)
+    for (const SearchPart& part : parts_)
+      for (const FoundContact& f : part.found)
         if (const int s = lower(f); s >= lo && s < hi) ++group_start[s + 1];
 #pragma omp barrier
 #pragma omp single
@@ -208,11 +245,11 @@ void LinkedCells::find_near_pairs(const Particles& p, const PeriodicBox& box, st
       out.resize(group_start[n]);
     }
     std::vector<int> fill(group_start.begin() + lo, group_start.begin() + hi);
-    for (const std::vector<FoundContact>& part : parts_)
-      for (const FoundContact& f : part)
+    for (const SearchPart& part : parts_)
+      for (const FoundContact& f : part.found)
         if (const int s = lower(f); s >= lo && s < hi) out[fill[s - lo]++] = f;
   }
-  for (std::vector<FoundContact>& part : parts_) std::vector<FoundContact>().swap(part);  // kept, they would double the memory
+  for (SearchPart& part : parts_) std::vector<FoundContact>().swap(part.found);  // kept, they would double the memory
 #pragma omp parallel for schedule(static, 1024)
   for (long s = 0; s < n; ++s) sort_small(out.data() + group_start[s], out.data() + group_start[s + 1]);
 }
@@ -226,7 +263,7 @@ void LinkedCells::find_near_walls(const Particles& p, const std::vector<WallGeom
   const double grow = rmax_ + margin;
 #pragma omp parallel num_threads(threads)
   {
-    std::vector<FoundContact>& mine = parts_[omp_get_thread_num()];
+    std::vector<FoundContact>& mine = parts_[omp_get_thread_num()].found;
     mine.clear();
     // One element at a time: a box has six walls, each covering thousands of cells.
 #pragma omp for schedule(dynamic, 1)

@@ -14,6 +14,13 @@
 
 namespace dem {
 
+// What one thread of a search finds, on cache lines of its own: threads appending to vectors whose
+// sizes share a line would pass it back and forth at every pair found.
+struct alignas(64) SearchPart {
+  std::vector<FoundContact> found;
+  std::vector<int> around;  // working storage: the slots of a cell's half shell (find_near_pairs)
+};
+
 class LinkedCells {
  public:
   // Sets `out` to every pair closer than touching plus `margin` (|x_i - x_j| < a_i + a_j + margin),
@@ -53,7 +60,7 @@ class LinkedCells {
   double rmax_ = 0;
   long dims_[3] = {0, 0, 0};  // cells per axis, with the padding
   long pad_[3] = {0, 0, 0};   // per axis: 1 where it is not periodic (an empty cell at each end)
-  std::vector<std::vector<FoundContact>> parts_;  // per thread, then joined
+  std::vector<SearchPart> parts_;  // per thread, then joined
 };
 
 }  // namespace dem
