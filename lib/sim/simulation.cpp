@@ -278,7 +278,9 @@ void Simulation::index_contacts_per_particle() {
   for (long b = 0; b < blocks; ++b) ordered = ordered && block_first_[b] <= block_first_[b + 1];
 #pragma omp parallel reduction(&& : ordered)
   {
-    std::vector<int>& mine = far_parts_[omp_get_thread_num()];
+    // Filled here and then swapped in: threads appending to neighbouring vectors would pass the
+    // cache line holding their sizes back and forth.
+    std::vector<int> mine;
 #pragma omp for schedule(static)
     for (long b = 0; b < blocks; ++b) {
       const long beyond = (b + reach + 1) * block;
@@ -287,6 +289,7 @@ void Simulation::index_contacts_per_particle() {
         if (std::max(pairs_.slot_i[k], pairs_.slot_j[k]) >= beyond) mine.push_back(static_cast<int>(k));
       }
     }
+    far_parts_[omp_get_thread_num()].swap(mine);
   }
   if (!ordered) throw std::logic_error("pair candidates not stored along the slots");
   const auto for_each_apart = [&](auto&& f) {
