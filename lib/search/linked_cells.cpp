@@ -192,8 +192,8 @@ void LinkedCells::find_near_pairs(const Particles& p, const PeriodicBox& box, st
         const int count = static_cast<int>(around.size());
 #ifdef DEM_SIMD_LOOPS
         // Four at a time: a pre-test of the distances (maybe_near_four), the plain test on those
-        // that pass it. (The settle of 10^4 rebuilds its list every 40 steps; one at a time, the
-        // search was 8 % of its time.)
+        // that pass it. (The settle of 10^4 rebuilds its list every 40 steps: its searches took
+        // 0.77 s of 10 s on one thread one at a time, 0.70-0.73 s so.)
         if (simd && count >= 4) {
           const int any = around[0];
           around.insert(around.end(), 3, any);  // lanes past the end: masked out
@@ -232,7 +232,9 @@ void LinkedCells::find_near_pairs(const Particles& p, const PeriodicBox& box, st
   const long n = static_cast<long>(p.size());
   const long part_count = static_cast<long>(parts_.size());
   auto lower = [](const FoundContact& f) { return std::min(f.slot_i, f.slot_j); };
-  std::vector<std::vector<int>> place(part_count);  // per part and slot: its count, then its first place
+  // Per part and slot: its count, then its first place (a count per slot and thread for the time of
+  // the grouping: 4 MB a thread at 10^6 particles).
+  std::vector<std::vector<int>> place(part_count);
 #pragma omp parallel for schedule(static, 1)
   for (long c = 0; c < part_count; ++c) {
     std::vector<int> count(n, 0);
