@@ -177,7 +177,7 @@ void LinkedCells::find_near_pairs(const Particles& p, const PeriodicBox& box, st
     const int* const cell_first = cell_first_.data();
     const int* const cell_slots = cell_slots_.data();
     // The slots of those five runs, one after the other (each thread's own, kept across cells).
-    std::vector<int>& around = parts_[omp_get_thread_num()].around;
+    std::vector<int> around;
     const bool simd = simd_loops_on();
 #pragma omp for schedule(dynamic, 64)
     for (long c = 0; c < ncell; ++c) {

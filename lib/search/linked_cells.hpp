@@ -18,7 +18,6 @@ namespace dem {
 // sizes share a line would pass it back and forth at every pair found.
 struct alignas(64) SearchPart {
   std::vector<FoundContact> found;
-  std::vector<int> around;  // working storage: the slots of a cell's half shell (find_near_pairs)
 };
 
 class LinkedCells {

@@ -293,10 +293,6 @@ void counted_wall_touches(const Particles& p, const std::vector<WallGeometry>& g
 
 void select_wall_contacts(const Vec3* to_wall, const std::uint8_t* touching, int n, double radius, std::uint8_t* take,
                           int* order) {
-  if (n == 1) {  // the common case (a sphere near one element only): a touch counts
-    take[0] = touching[0];
-    return;
-  }
   int m = 0;
   for (int e = 0; e < n; ++e) {
     take[e] = 0;

@@ -278,8 +278,7 @@ void Simulation::index_contacts_per_particle() {
   // slot there) is one when its larger slot lies in block b + reach + 1 or later (a comparison:
   // two divisions per candidate were most of this function's time). They are found in parallel,
   // each thread's blocks in order, and kept in candidate order.
-  far_parts_.resize(omp_get_max_threads());
-  for (std::vector<int>& part : far_parts_) part.clear();
+  std::vector<std::vector<int>> far_parts(omp_get_max_threads());  // per thread
   bool ordered = block_first_[blocks] == npc;
   for (long b = 0; b < blocks; ++b) ordered = ordered && block_first_[b] <= block_first_[b + 1];
 #pragma omp parallel reduction(&& : ordered)
@@ -295,11 +294,11 @@ void Simulation::index_contacts_per_particle() {
         if (std::max(pairs_.slot_i[k], pairs_.slot_j[k]) >= beyond) mine.push_back(static_cast<int>(k));
       }
     }
-    far_parts_[omp_get_thread_num()].swap(mine);
+    far_parts[omp_get_thread_num()].swap(mine);
   }
   if (!ordered) throw std::logic_error("pair candidates not stored along the slots");
   const auto for_each_apart = [&](auto&& f) {
-    for (const std::vector<int>& part : far_parts_)  // a static schedule: the threads' blocks in order
+    for (const std::vector<int>& part : far_parts)  // a static schedule: the threads' blocks in order
       for (int k : part) f(k);
   };
   // Per-particle lists of those pair candidates (blocks apart), by key, so that their sums in

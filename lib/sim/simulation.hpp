@@ -157,7 +157,6 @@ class Simulation {
   // Per-particle lists of the pair candidates between blocks farther apart than load_reach, which
   // integrate() sums, in a fixed order; rebuilt with the neighbour list.
   std::vector<int> csr_start_, csr_entry_, csr_fill_;
-  std::vector<std::vector<int>> far_parts_;  // per thread: its far pair candidates (index_contacts_per_particle)
   std::vector<long> block_first_;  // first pair candidate of each load block, then the end
   long indexed_block_ = 0, indexed_reach_ = -1;  // load_block and the reach of block_first_ and the
                                                 // per-particle lists
