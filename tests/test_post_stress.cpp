@@ -5,8 +5,10 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <random>
 
 #include "post/contact_forces.hpp"
 #include "post/stress.hpp"
@@ -80,6 +82,52 @@ TEST(LoveWeber, ForceFromTheStateAsACheckpointHoldsIt) {
   const BoxAverage avg = box_average(sim.particles, particle_stress(sim.particles, c), box);
   EXPECT_NEAR(avg.contact(2, 2), -F * l / box.volume(), 1e-12 * F * l / box.volume());
   EXPECT_NEAR(avg.contact(0, 0), 0.0, 1e-20);
+}
+
+// The forces of a state as post-macro recomputes them, on samples on both sides of the size above
+// which a step sorts the storage (SimParams::sort_min_particles) and at a step where it sorts (a
+// multiple of sort_every): every record names the particles the force acts between. Answer by
+// hand: spheres at rest with no spring history carry k_n u along the branch, u from their
+// positions (round-off tolerance, 1e-12 of the force). Spheres on a jittered cubic lattice whose
+// spacing is below the diameter (about six contacts each), stored in a shuffled order so that a
+// sort moves every one; 22^3 = 10,648 lies above the threshold of 10^4, 21^3 = 9,261 below.
+// (A step that sorts the copy it computes on put the forces on the wrong particles: a settled
+// 12,000-sphere sample gave twice the pressure.)
+TEST(LoveWeber, ForcesOfTheStateNameTheirParticlesWhereAStepWouldSort) {
+  for (const int n : {21, 22}) {
+    const double a = 1e-3, s = 1.98e-3, kn = 2e4;
+    Simulation sim;
+    sim.materials = MaterialTable({spring_only(kn)}, {});
+    sim.params.gravity = Vec3::Zero();
+    sim.params.sort_every = 1000;
+    sim.params.sort_min_particles = 10000;
+    sim.dt = 1e-7;
+    sim.step = 3000;
+    std::vector<int> place(n * n * n);
+    for (int k = 0; k < n * n * n; ++k) place[k] = k;
+    std::mt19937 rng(7);
+    std::shuffle(place.begin(), place.end(), rng);
+    std::uniform_real_distribution<double> jitter(-0.004 * a, 0.004 * a);
+    for (int q : place) {
+      const Vec3 lattice(q % n, (q / n) % n, q / (n * n));
+      sim.particles.add(q, lattice * s + Vec3(jitter(rng), jitter(rng), jitter(rng)), a, 2500, 0);
+    }
+    const std::vector<Vec3> x = sim.particles.x;
+    const ContactForceSet c = contact_forces_at_state(sim);
+    EXPECT_EQ(sim.particles.x, x) << "the state is not advanced";
+    // Lattice neighbours overlap (|d| <= s + 0.014 a < 2a), others do not (|d| >= 1.41 s - 0.014 a).
+    const long neighbours = 3L * n * n * (n - 1);
+    ASSERT_EQ(static_cast<long>(c.pairs()), neighbours) << n;
+    long wrong = 0;
+    for (std::size_t k = 0; k < c.pairs(); ++k) {
+      const int i = c.pair_i[k], j = c.pair_j[k];
+      const Vec3 d = x[j] - x[i];
+      const double u = 2 * a - d.norm();
+      const Vec3 want = -kn * u * d.normalized();
+      if (!(u > 0) || (c.pair_force[k] - want).norm() > 1e-12 * kn * u) ++wrong;
+    }
+    EXPECT_EQ(wrong, 0) << n << "^3 spheres: records whose force is not that of their two particles";
+  }
 }
 
 // A sphere of radius a resting on a wall z = 0 with its centre at height a - u: the wall pushes

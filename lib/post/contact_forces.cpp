@@ -34,10 +34,11 @@ ContactForceSet contact_forces(const Simulation& sim, const std::vector<Vec3>& x
 
 ContactForceSet contact_forces_at_state(const Simulation& sim) {
   // advance() computes the contacts and their forces at x^n first, then integrates; the copy's
-  // records are those forces (the particles' storage order never changes in a step, so the slots
-  // index `sim`'s particles too).
+  // records are those forces. Its slots index `sim`'s particles only if the step keeps the
+  // storage order: it must not sort it.
   Simulation probe = sim;
   probe.params.keep_pair_results = true;
+  probe.params.sort_every = 0;
   probe.advance();
   return contact_forces(probe, sim.particles.x);
 }
