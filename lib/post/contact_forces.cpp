@@ -33,13 +33,11 @@ ContactForceSet contact_forces(const Simulation& sim, const std::vector<Vec3>& x
 }
 
 ContactForceSet contact_forces_at_state(const Simulation& sim) {
-  // advance() computes the contacts and their forces at x^n first, then integrates; the copy's
-  // records are those forces. Its slots index `sim`'s particles only if the step keeps the
-  // storage order: it must not sort it.
+  // A copy, since computing the forces moves its contact history on; the copy keeps the storage
+  // order, so its slots index `sim`'s particles.
   Simulation probe = sim;
   probe.params.keep_pair_results = true;
-  probe.params.sort_every = 0;
-  probe.advance();
+  probe.compute_forces();
   return contact_forces(probe, sim.particles.x);
 }
 

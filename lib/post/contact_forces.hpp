@@ -40,8 +40,8 @@ struct ContactForceSet {
 ContactForceSet contact_forces(const Simulation& sim, const std::vector<Vec3>& x);
 
 // The forces at the state as it stands (a checkpoint keeps the contact history, not the forces):
-// those the next step computes at x^n from v^{n-1/2} and the stored springs. One step is taken on
-// a copy of `sim`, whose records are kept; `sim` is unchanged. Throws PhysicsError where the
+// those the next step computes at x^n from v^{n-1/2} and the stored springs, by
+// Simulation::compute_forces on a copy of `sim` (no step is taken); `sim` is unchanged. Throws PhysicsError where the
 // state is unstable (an overlap beyond simulation.max_overlap).
 ContactForceSet contact_forces_at_state(const Simulation& sim);
 

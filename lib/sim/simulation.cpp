@@ -21,6 +21,15 @@ namespace dem {
 void Simulation::advance() {
   if (params.sort_every > 0 && step % params.sort_every == 0 && static_cast<long>(particles.size()) >= params.sort_min_particles)
     sort_storage();
+  compute_forces();
+  if (params.max_energy_gain > 0) audit_energy();
+  integrate(particles.any_fixed());
+  time += dt;
+  ++step;
+  if (has_bonds_) count_bonds();  // bonds only ever break: stop paying once all are gone
+}
+
+void Simulation::compute_forces() {
   find_contacts();
   const bool any_fixed = particles.any_fixed();
   const ForceLoopInput in{particles, materials, walls, wall_geometry_, wall_runs_, wall_run_order_, wall_block_first_, periodic,
@@ -42,11 +51,6 @@ void Simulation::advance() {
   pair_results_kept_ = params.keep_pair_results;
   contacts_modified();
   if (worst_overlap > params.max_overlap) report_overlap(worst_overlap);
-  if (params.max_energy_gain > 0) audit_energy();
-  integrate(any_fixed);
-  time += dt;
-  ++step;
-  if (has_bonds_) count_bonds();  // bonds only ever break: stop paying once all are gone
 }
 
 const ContactList& Simulation::pair_contacts() const {

@@ -71,8 +71,15 @@ class Simulation {
   double dt = 0;              // [s]
   std::int64_t step = 0;
 
-  // One explicit step: contacts and forces at x^n with v^{n-1/2}, then eq. 2.38-2.47.
+  // One explicit step: contacts and forces at x^n with v^{n-1/2} (compute_forces), then
+  // eq. 2.38-2.47.
   void advance();
+  // The first half of a step, without the motion: the contacts at x^n and their forces from
+  // v^{n-1/2} and the stored history, readable afterwards through pair_contacts() and
+  // wall_contacts(). It moves the contact history on as the step does (the springs take this
+  // step's increment), so a run calls advance(), never both; post-processing calls it on a copy
+  // (post/contact_forces.hpp). The storage order is left as it is (a step may sort it first).
+  void compute_forces();
 
   // The contacts (touching, or holding by a bond) of the last step, sorted by key: particle-particle
   // and particle-wall (key_j = wall index). Compacted from the candidate lists on demand (not in
