@@ -13,8 +13,8 @@
 #include "post/contact_forces.hpp"
 #include "sim/block_times.hpp"
 #include "sim/force_loop.hpp"
-#include "sim/simd.hpp"
 #include "sim/simulation.hpp"
+#include "simd/simd.hpp"
 
 #include "same_bits.hpp"
 
@@ -168,7 +168,7 @@ TEST(Determinism, SumsKeepTheirOrderWhenAThreadLags) {
   omp_set_num_threads(threads_before);
 }
 
-// The force loop's four-wide versions (sim/simd.hpp) are speed only: a run with the plain loops
+// The force loop's four-wide versions (simd/simd.hpp) are speed only: a run with the plain loops
 // ends with the same bits (here with walls, a sparse cloud: pass 1; the four-wide law runs on
 // chunks of 16 contacts or more, tests/test_simd_loops.cpp).
 TEST(Determinism, FourWideLoopsGiveThePlainLoopsBits) {

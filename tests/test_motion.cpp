@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "sim/motion.hpp"
-#include "sim/simd.hpp"
+#include "simd/simd.hpp"
 
 #include "same_bits.hpp"
 

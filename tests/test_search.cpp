@@ -8,8 +8,8 @@
 #include "generation/fill.hpp"
 #include "search/largest_move.hpp"
 #include "search/linked_cells.hpp"
-#include "sim/simd.hpp"
 #include "sim/simulation.hpp"
+#include "simd/simd.hpp"
 
 namespace dem {
 namespace {

@@ -1,4 +1,4 @@
-// The force loop's four-wide versions (sim/simd.hpp) are speed only. Pass 1 (sim/find_contacts.hpp,
+// The force loop's four-wide versions (simd/simd.hpp) are speed only. Pass 1 (sim/find_contacts.hpp,
 // which candidates are contacts) must decide exactly as the plain loop and as the definition
 // (|x_j - x_i| < a_i + a_j through the nearest image, or bonded; the neighbour list never pairs
 // two held particles), with the same separations to the bit; pass 2 (sim/pair_law.hpp, the
@@ -16,8 +16,8 @@
 #include "core/error.hpp"
 #include "generation/fill.hpp"
 #include "sim/find_contacts.hpp"
-#include "sim/simd.hpp"
 #include "sim/simulation.hpp"
+#include "simd/simd.hpp"
 
 #include "same_bits.hpp"
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <limits>
 
-#include "sim/simd.hpp"
+#include "simd/simd.hpp"
 
 namespace dem {
 
@@ -21,7 +21,7 @@ double one_by_one(const Vec3* x, const Vec3* x_build, const PeriodicBox& box, lo
 }
 
 #ifdef DEM_SIMD_LOOPS
-// Four particles' positions in three registers (sim/simd.hpp).
+// Four particles' positions in three registers (simd/simd.hpp).
 [[gnu::target("avx2")]] double four_at_a_time(const Vec3* x, const Vec3* x_build, const PeriodicBox& box, long first,
                                               long last) {
   // The period and its half along each register lane's axis (simd::nearest_image: an axis that is

@@ -1,6 +1,6 @@
 #pragma once
 // How far particles have moved since the neighbour list was built: read every step for every
-// particle, so four particles at a time with AVX2 (sim/simd.hpp) where the processor has it.
+// particle, so four particles at a time with AVX2 (simd/simd.hpp) where the processor has it.
 #include "core/types.hpp"
 #include "state/periodic.hpp"
 

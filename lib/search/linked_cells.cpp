@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
-#include "sim/simd.hpp"
+#include "simd/simd.hpp"
 
 namespace dem {
 

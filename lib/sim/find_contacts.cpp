@@ -3,7 +3,7 @@
 #include <array>
 #include <cstring>
 
-#include "sim/simd.hpp"
+#include "simd/simd.hpp"
 
 namespace dem {
 

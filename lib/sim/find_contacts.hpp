@@ -4,7 +4,7 @@
 // law on the contacts found, without an unpredictable branch, on the separations found here.
 //
 // Two versions give the same bits: a plain loop, and one that tests four candidates at once with
-// AVX2 where the processor has it (sim/simd.hpp: the same operations in the same order per
+// AVX2 where the processor has it (simd/simd.hpp: the same operations in the same order per
 // candidate, so the same separations and the same decisions). Pass 1 reads every candidate of
 // the neighbour list, three or more per contact, and was a third of the chute's time.
 #include <cstdint>

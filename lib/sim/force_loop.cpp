@@ -13,7 +13,7 @@
 #include "contact/contact_law.hpp"
 #include "sim/find_contacts.hpp"
 #include "sim/pair_law.hpp"
-#include "sim/simd.hpp"
+#include "simd/simd.hpp"
 #include "sim/simulation.hpp"
 
 namespace dem {

@@ -4,7 +4,7 @@
 #include <cstring>
 #include <limits>
 
-#include "sim/simd.hpp"
+#include "simd/simd.hpp"
 
 namespace dem {
 
@@ -61,7 +61,7 @@ long move_one_by_one(const MotionArrays& a, const MotionConstants& c, long first
 using simd::by_axis;
 using simd::by_particle;
 
-// Four particles' padded loads [x y z -] as their vectors are laid out (sim/simd.hpp): [x0 y0 z0 x1],
+// Four particles' padded loads [x y z -] as their vectors are laid out (simd/simd.hpp): [x0 y0 z0 x1],
 // [y1 z1 x2 y2], [z2 x3 y3 z3]. From loads, broadcasts and blends only (no shuffle across the
 // register's halves: those have one port, which the integration keeps busy already).
 [[gnu::target("avx2")]] inline void packed_loads(const LoadSum* s, __m256d out[3]) {
@@ -75,7 +75,7 @@ using simd::by_particle;
   const __m256d ar = _mm256_set1_pd(c.ar), br = _mm256_set1_pd(c.br), at = _mm256_set1_pd(c.at), bt = _mm256_set1_pd(c.bt);
   const __m256d dt = _mm256_set1_pd(c.dt), two_fifths = _mm256_set1_pd(0.4), largest = _mm256_set1_pd(DBL_MAX);
   const __m256d sign = _mm256_set1_pd(-0.0), zero = _mm256_setzero_pd();
-  // Four particles' vectors in three registers (sim/simd.hpp), and what they are compared with:
+  // Four particles' vectors in three registers (simd/simd.hpp), and what they are compared with:
   // the period (an axis that is not periodic: no bound), to see which particles left it.
   __m256d gravity[3], period_lo[3], period_hi[3];
   by_axis(c.gravity, gravity);

@@ -1,7 +1,7 @@
 #pragma once
 // One step of motion (eq. 2.38-2.47) once the force loop has summed the contact loads: each
 // particle's net load (gravity, the force loop's sums, then its contacts summed here), and its new
-// velocities and position. Four particles at a time with AVX2 (sim/simd.hpp) where the processor
+// velocities and position. Four particles at a time with AVX2 (simd/simd.hpp) where the processor
 // has it, else one by one: per coordinate the same operations in the same order, so the same bits.
 #include <cfloat>
 #include <cmath>

@@ -1,6 +1,6 @@
 #include "sim/pair_law.hpp"
 
-#include "sim/simd.hpp"
+#include "simd/simd.hpp"
 
 namespace dem {
 

@@ -3,7 +3,7 @@
 // each contact leaves behind: its normal, its sum, and its loads on both particles.
 //
 // The plain version is three loops in force_loop.cpp (any law); the Cundall law (the law of every
-// scene without bonds) also has a four-wide version with AVX2 (sim/simd.hpp), the same
+// scene without bonds) also has a four-wide version with AVX2 (simd/simd.hpp), the same
 // operations in the same order per contact as contact/contact_law.hpp, so the same bits.
 #include <algorithm>
 #include <cstdint>

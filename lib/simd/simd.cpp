@@ -1,4 +1,4 @@
-#include "sim/simd.hpp"
+#include "simd/simd.hpp"
 
 #include <atomic>
 #include <cstdlib>
