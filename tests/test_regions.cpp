@@ -12,8 +12,8 @@
 
 #include "core/error.hpp"
 #include "io/scene_parser.hpp"
+#include "io/stl.hpp"
 #include "scene/region.hpp"
-#include "walls/stl.hpp"
 
 namespace dem {
 namespace {

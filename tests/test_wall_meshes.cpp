@@ -19,8 +19,8 @@
 
 #include "core/error.hpp"
 #include "io/scene_parser.hpp"
+#include "io/stl.hpp"
 #include "walls/primitives.hpp"
-#include "walls/stl.hpp"
 #include "walls/wall.hpp"
 
 namespace dem {

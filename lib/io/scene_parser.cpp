@@ -14,8 +14,8 @@
 #include <toml++/toml.h>
 
 #include "core/error.hpp"
+#include "io/stl.hpp"
 #include "walls/primitives.hpp"
-#include "walls/stl.hpp"
 
 namespace dem {
 

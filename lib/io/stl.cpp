@@ -1,4 +1,4 @@
-#include "walls/stl.hpp"
+#include "io/stl.hpp"
 
 #include <cctype>
 #include <charconv>
