@@ -1,4 +1,4 @@
-// The servo law (walls/servo.hpp) against the analytic answer on a plant without chaos: a lid held
+// The servo law (control/servo.hpp) against the analytic answer on a plant without chaos: a lid held
 // by n linear springs on a bed whose surface rises towards it at a steady rate r (as a side wall
 // squeezing the sample pushes it up). Proportional control must lag by exactly the error that
 // makes the lid retreat at r; PI control must bring that error to zero. The chaotic squeeze of
@@ -9,8 +9,8 @@
 #include <cmath>
 #include <vector>
 
+#include "control/servo.hpp"
 #include "sim/simulation.hpp"
-#include "walls/servo.hpp"
 
 namespace dem {
 namespace {

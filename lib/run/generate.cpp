@@ -8,6 +8,7 @@
 #include <random>
 #include <sstream>
 
+#include "control/servo.hpp"
 #include "core/error.hpp"
 #include "generation/fill.hpp"
 #include "io/checkpoint.hpp"
@@ -16,7 +17,6 @@
 #include "run/settle.hpp"
 #include "run/setup.hpp"
 #include "walls/container.hpp"
-#include "walls/servo.hpp"
 
 namespace dem {
 
@@ -158,7 +158,7 @@ void compact(const GenerateOptions& o) {
   std::int64_t steps = 0;
   bool done = false;
   if (c.target_stress > 0) {
-    // Stress servo (walls/servo.hpp). Done when every wall is within 2 % of the target and the bed
+    // Stress servo (control/servo.hpp). Done when every wall is within 2 % of the target and the bed
     // is at rest (settle criterion).
     while (steps < max_steps && !done) {
       drive_servos(sim, servos, k_max, c_max);

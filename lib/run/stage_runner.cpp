@@ -6,6 +6,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "control/servo.hpp"
 #include "core/error.hpp"
 #include "generation/fill.hpp"
 #include "io/checkpoint.hpp"
@@ -16,7 +17,6 @@
 #include "run/progress.hpp"
 #include "run/setup.hpp"
 #include "run/wall_log.hpp"
-#include "walls/servo.hpp"
 
 namespace dem {
 

@@ -100,7 +100,7 @@ struct MotionSpec {
   void apply_to(WallMotion& m) const;
 };
 
-// `[[stage.servo]]`: a wall group translating to hold a target normal stress (walls/servo.hpp).
+// `[[stage.servo]]`: a wall group translating to hold a target normal stress (control/servo.hpp).
 struct ServoSpec {
   std::string wall;                // wall or group name
   double target_stress = 0;        // [Pa], compression positive

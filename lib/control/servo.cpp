@@ -1,4 +1,4 @@
-#include "walls/servo.hpp"
+#include "control/servo.hpp"
 
 #include <algorithm>
 #include <cmath>
