@@ -337,11 +337,11 @@ TEST(LiuLaw, DirectEvaluation) {
   EXPECT_EQ(law_tension<LiuNormal>(p, 1.0001 * kStrength / kKn, bonded), 0.0) << "T would exceed F: break";
   EXPECT_EQ(bonded, 0);
   EXPECT_EQ(law_tension<LiuNormal>(p, 0.5 * kStrength / kKn, bonded), 0.0) << "broken for good";
-  // An unbonded contact carries no tension at any separation, and nothing breaks.
+  // An unbonded contact carries no tension at any separation, and no bond appears.
   for (int k = 1; k <= 1000; ++k) {
-    bool broken = false;
-    EXPECT_EQ(LiuNormal::elastic(p, -k * 2e-3 * kStrength / kKn, false, broken), 0.0);
-    EXPECT_FALSE(broken);
+    bool unbonded = false;
+    EXPECT_EQ(LiuNormal::elastic(p, -k * 2e-3 * kStrength / kKn, unbonded), 0.0);
+    EXPECT_FALSE(unbonded);
   }
   EXPECT_DOUBLE_EQ(p.break_separation, kStrength / kKn);
 }

@@ -2,9 +2,9 @@
 // Pass 2 of the force loop: the law on the contacts pass 1 found (find_contacts.hpp), and what
 // each contact leaves behind: its normal, its sum, and its loads on both particles.
 //
-// The plain version is three loops in force_loop.cpp (any law); the Cundall law (the law of every
-// scene without bonds) also has a four-wide version with AVX2 (simd/simd.hpp), the same
-// operations in the same order per contact as contact/contact_law.hpp, so the same bits.
+// The plain version is three loops in force_loop.cpp (any law); a law written over lanes
+// (contact/contact_law.hpp, simd/lanes.hpp; CundallNormal, the law of every scene without bonds)
+// also runs four contacts at a time with AVX2 here: the same source, so the same bits.
 #include <algorithm>
 #include <cstdint>
 
