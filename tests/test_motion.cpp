@@ -96,7 +96,7 @@ Expected definition(const MotionCase& m, long i, bool any_fixed) {
       const int k = m.csr_entry[q] >> 1;
       if (!m.active[k]) continue;
       f += (m.csr_entry[q] & 1) ? -m.sum[k].force[d] : m.sum[k].force[d];
-      t += m.radius[i] * m.sum[k].moment[d];
+      t += m.radius[i] * m.sum[k].torque_per_radius[d];
     }
     const double inertia = 0.4 * m.mass[i] * m.radius[i] * m.radius[i];
     e.v[d] = (m.c.ar * m.v[i][d] + f * (m.c.dt / m.mass[i])) * m.c.br;

@@ -16,10 +16,10 @@
 namespace dem {
 
 // What the per-particle sums read of one contact, together in memory: the force on i and its
-// moment arm term n x f_t (eq. 2.33-2.34: the torque on i is a_i n x f_t, on j a_j n x f_t).
+// torque per unit radius n x f_t (eq. 2.33-2.34: the torque on i is a_i n x f_t, on j a_j n x f_t).
 struct ContactSum {
   Vec3 force = Vec3::Zero();   // total force on i [N]; j receives the opposite (eq. 2.31-2.32)
-  Vec3 moment = Vec3::Zero();  // n x f_t [N]
+  Vec3 torque_per_radius = Vec3::Zero();  // n x f_t [N]: times a particle's radius, its torque
 };
 
 struct ContactList {
@@ -35,7 +35,7 @@ struct ContactList {
   std::size_t size() const { return key_i.size(); }
   const Vec3& force(std::size_t k) const { return sum[k].force; }  // on i [N]
   // The tangential part f_t of force(k): (n x f_t) x n, since f_t lies in the tangent plane.
-  Vec3 tangential(std::size_t k) const { return sum[k].moment.cross(normal[k]); }
+  Vec3 tangential(std::size_t k) const { return sum[k].torque_per_radius.cross(normal[k]); }
   void clear() { resize(0); }
   void resize(std::size_t n);  // with an eighth more room when it grows
   void reserve(std::size_t n);

@@ -169,12 +169,12 @@ double wall_run(const ForceLoopInput& in, ContactList& wc, BlockLoads& out, long
     c.m_eff = p.mass[i];
     const ContactForce f = ContactLaw<Normal>::evaluate(in.materials.pair(p.material[i], in.walls[wc.slot_j[k]].material), c,
                                                         in.dt, wc.spring[k], wc.bonded[k]);
-    const Vec3 moment = c.n.cross(f.tangential);
+    const Vec3 torque_per_radius = c.n.cross(f.tangential);
     wc.active[k] = 1;
     wc.normal[k] = c.n;
-    wc.sum[k] = {f.on_i, moment};
+    wc.sum[k] = {f.on_i, torque_per_radius};
     out.force[i].v += f.on_i;  // eq. 2.31
-    out.torque[i].v += p.radius[i] * moment;  // eq. 2.33
+    out.torque[i].v += p.radius[i] * torque_per_radius;  // eq. 2.33
     worst = std::max(worst, relative_overlap_if_larger(c.overlap, p.radius[i], worst));
   }
   return worst;

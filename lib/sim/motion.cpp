@@ -22,7 +22,7 @@ inline void add_contacts_summed_here(const MotionArrays& a, long i, Vec3& force,
     if (!a.active[k]) continue;
     // Torques, eq. 2.33-2.34: M = a n x f_t for i and j alike (M_j = (a_j / a_i) M_i).
     force += (code & 1) ? Vec3(-a.sum[k].force) : a.sum[k].force;  // eq. 2.31-2.32
-    torque += a.radius[i] * a.sum[k].moment;
+    torque += a.radius[i] * a.sum[k].torque_per_radius;
   }
 }
 

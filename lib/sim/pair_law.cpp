@@ -65,9 +65,9 @@ AVX2 void take_from(LoadSum& s, __m256d a) { _mm256_store_pd(s.v.data(), _mm256_
 // one load, add and store (sim/load_sum.hpp). The spring with a masked store: its three doubles,
 // nothing written past it.
 AVX2 void keep_loads(const PairLawArrays& a, const int (&k)[4], const int (&i)[4], const int (&j)[4], int count,
-                     const V3& spring, const V3& on_i, const V3& moment_i, const V3& moment_j) {
+                     const V3& spring, const V3& on_i, const V3& torque_i, const V3& torque_j) {
   __m256d s[4], f[4], t_i[4], t_j[4];
-  per_lane(spring, s), per_lane(on_i, f), per_lane(moment_i, t_i), per_lane(moment_j, t_j);
+  per_lane(spring, s), per_lane(on_i, f), per_lane(torque_i, t_i), per_lane(torque_j, t_j);
   const __m256i xyz = _mm256_setr_epi64x(-1, -1, -1, 0);
   for (int l = 0; l < count; ++l) {
     _mm256_maskstore_pd(a.spring[k[l]].data(), xyz, s[l]);
@@ -79,10 +79,10 @@ AVX2 void keep_loads(const PairLawArrays& a, const int (&k)[4], const int (&i)[4
 }
 // The same by keep_pair_result itself, from lane arrays: any contact.
 AVX2 void keep_one_by_one(const PairLawArrays& a, const int (&k)[4], const int (&i)[4], const int (&j)[4], int count,
-                          const V3& spring, const V3& n, const V3& on_i, const V3& moment, int reach_end) {
+                          const V3& spring, const V3& n, const V3& on_i, const V3& torque_per_radius, int reach_end) {
   const Lanes nx = lanes_of(n.x), ny = lanes_of(n.y), nz = lanes_of(n.z), fx = lanes_of(on_i.x), fy = lanes_of(on_i.y),
               fz = lanes_of(on_i.z);
-  const Lanes mx = lanes_of(moment.x), my = lanes_of(moment.y), mz = lanes_of(moment.z);
+  const Lanes mx = lanes_of(torque_per_radius.x), my = lanes_of(torque_per_radius.y), mz = lanes_of(torque_per_radius.z);
   const Lanes sx = lanes_of(spring.x), sy = lanes_of(spring.y), sz = lanes_of(spring.z);
   for (int l = 0; l < count; ++l) {
     a.spring[k[l]] = Vec3(sx.l[l], sy.l[l], sz.l[l]);
@@ -151,15 +151,15 @@ template <bool Fixed, bool Bonds>
     Mask4 bonded = Bonds ? lanes::mask4(a.bonded[kl[0]], a.bonded[kl[1]], a.bonded[kl[2]], a.bonded[kl[3]]) : Mask4{_mm256_setzero_pd()};
     V3 spring = in_tangent_plane(load_four(a.spring, kl), c.n);
     const LaneForce<Lanes4> f = evaluate_in_plane<CundallNormal>(law, c, dt, spring, bonded);  // Cundall bonds never break
-    const V3 moment = cross(c.n, f.tangential);
+    const V3 torque_per_radius = cross(c.n, f.tangential);
 
     // Kept contact by contact, in order.
     const int count = std::min(4, m - e);
     const __m128i larger = _mm_max_epi32(i, j);
     if (!a.keep_results && _mm_movemask_epi8(_mm_cmplt_epi32(larger, _mm_set1_epi32(reach_end))) == 0xffff)
-      keep_loads(a, kl, il, jl, count, spring, f.on_i, ri * moment, rj * moment);
+      keep_loads(a, kl, il, jl, count, spring, f.on_i, ri * torque_per_radius, rj * torque_per_radius);
     else
-      keep_one_by_one(a, kl, il, jl, count, spring, c.n, f.on_i, moment, reach_end);
+      keep_one_by_one(a, kl, il, jl, count, spring, c.n, f.on_i, torque_per_radius, reach_end);
     // relative_overlap_if_larger's test on every lane with the group's first `worst`: where no lane
     // passes, none can with the larger values the loop below may reach (almost every group).
     const __m256d bar = (_mm256_set1_pd(worst) * _mm256_min_pd(ri.v, rj.v)) * _mm256_set1_pd(1 - 1e-9);

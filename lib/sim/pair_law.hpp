@@ -46,16 +46,16 @@ struct PairLawArrays {
 // (the smaller always lies in the block being summed), its loads on both particles, else its sum
 // (the force on i and n x f_t), which integrate() adds; its normal and sum always where
 // a.keep_results.
-inline void keep_pair_result(const PairLawArrays& a, long k, int i, int j, const Vec3& n, const Vec3& on_i, const Vec3& moment,
+inline void keep_pair_result(const PairLawArrays& a, long k, int i, int j, const Vec3& n, const Vec3& on_i, const Vec3& torque_per_radius,
                              int reach_end) {
   const bool summed_here = std::max(i, j) < reach_end;
   if (a.keep_results) a.normal[k] = n;
-  if (a.keep_results || !summed_here) a.sum[k] = {on_i, moment};
+  if (a.keep_results || !summed_here) a.sum[k] = {on_i, torque_per_radius};
   if (summed_here) {
     a.force[i].v += on_i;  // eq. 2.31-2.32
     a.force[j].v -= on_i;
-    a.torque[i].v += a.radius[i] * moment;  // eq. 2.33-2.34: a n x f_t for i and j alike
-    a.torque[j].v += a.radius[j] * moment;
+    a.torque[i].v += a.radius[i] * torque_per_radius;  // eq. 2.33-2.34: a n x f_t for i and j alike
+    a.torque[j].v += a.radius[j] * torque_per_radius;
   }
 }
 
