@@ -13,8 +13,8 @@
 #include "post/contact_forces.hpp"
 #include "sim/block_times.hpp"
 #include "sim/force_loop.hpp"
-#include "sim/simulation.hpp"
 #include "simd/simd.hpp"
+#include "sim/simulation.hpp"
 
 #include "same_bits.hpp"
 
@@ -55,23 +55,16 @@ Simulation make_cloud() {
   return sim;
 }
 
-// Also with small load blocks (SimParams::load_block, load_reach), so that many contacts lie
-// across blocks (within reach and farther) and the threads share out many blocks, and with the
-// storage re-sorted every 7 steps; three threads too (an odd count, more threads than this
-// machine's cores: threads wait for each other's blocks), and a run whose thread count changes
-// from step to step (the shares of the last step no longer fit). The 13 blocks of 16 slots in one
-// tile (reach 16: the threads split it), in tiles of 3 and of 1. (Few of this cloud's particles
-// sum three contacts at once, so a wrong order seldom shows here: the lagging-thread test below
-// checks the order.)
+// Also with small load blocks (SimParams::load_block), so that the threads share out many blocks,
+// and with the storage re-sorted every 7 steps; three threads too (an odd count, more threads than
+// this machine's cores), and a run whose thread count changes from step to step (the shares of
+// the last step no longer fit).
 TEST(Determinism, OneTwoAndThreeThreadsGiveTheSameBits) {
   const int threads_before = omp_get_max_threads();
-  struct Blocks {
-    long block, reach;
-  };
-  for (const Blocks blocks : {Blocks{16, 16}, Blocks{16, 3}, Blocks{16, 1}}) {
+  for (const long block : {16L, 256L}) {
     auto make = [&] {
       Simulation s = make_cloud();
-      s.params.load_block = blocks.block, s.params.load_reach = blocks.reach;
+      s.params.load_block = block;
       s.params.sort_every = 7, s.params.sort_min_particles = 0;
       return s;
     };
@@ -86,7 +79,7 @@ TEST(Determinism, OneTwoAndThreeThreadsGiveTheSameBits) {
         if (threads == 0) omp_set_num_threads(1 + s % 3);
         b.advance();
       }
-      const std::string what = "load_block " + std::to_string(blocks.block) + " reach " + std::to_string(blocks.reach) + ", " +
+      const std::string what = "load_block " + std::to_string(block) + ", " +
                                (threads ? std::to_string(threads) : std::string("1-2-3")) + " threads";
       EXPECT_TRUE(same_bits(a.particles.x, b.particles.x)) << what;
       EXPECT_TRUE(same_bits(a.particles.v, b.particles.v)) << what;
@@ -128,42 +121,60 @@ Simulation make_pressed_lattice(bool x_walls = false) {
   return sim;
 }
 
-// The order of the sums is kept whatever the threads' pace: one thread of two or three pauses
-// before each of its blocks (set_lagging_thread_for_tests), so that the others run ahead of it and
-// would add their contacts first were a wait missing. Blocks of 16 slots with a reach of 2 (tiles
-// of two blocks, each thread's run holds several) and of 16 (the 63 blocks in four tiles: the runs
-// begin and end inside tiles); and with walls, whose contacts each thread adds to its own
-// particles once their pair contacts are in.
-TEST(Determinism, SumsKeepTheirOrderWhenAThreadLags) {
+// Each particle's contact forces are added in the order of its contacts' keys (particle ids), so
+// neither the storage order nor the thread count changes a bit. The pressed lattice, stored as
+// built (never sorted), shuffled (never sorted), and shuffled and sorted along the cells every 7
+// steps, on one, two and three threads, with blocks of 16 slots and of 256, ends with the same
+// bits particle by particle (matched by id), with periodic axes and with walls. The scene can
+// tell: each sphere's six contact forces summed in another order give other bits for some sphere.
+TEST(Determinism, StorageOrderAndThreadsChangeNoBit) {
   const int threads_before = omp_get_max_threads();
   constexpr int kSteps = 60;
-  bool x_walls = false;
-  auto run = [&](long reach, int threads, int lagging) {
-    Simulation s = make_pressed_lattice(x_walls);
-    s.params.load_block = 16, s.params.load_reach = reach;
-    omp_set_num_threads(threads);
-    set_lagging_thread_for_tests(lagging, 50);
-    for (int k = 0; k < kSteps; ++k) s.advance();
-    set_lagging_thread_for_tests(-1, 0);
-    return s;
+  auto by_id = [](const Simulation& s, const std::vector<Vec3>& field) {
+    std::vector<Vec3> out(field.size());
+    for (std::size_t k = 0; k < field.size(); ++k) out[s.particles.id[k]] = field[k];
+    return out;
   };
   for (bool walls : {false, true}) {
-    x_walls = walls;
-    const Simulation near = run(2, 1, -1), far = run(16, 1, -1);
-    ASSERT_EQ(near.pair_contacts().size(), walls ? 2900u : 3000u) << "every sphere must touch its six neighbours";
-    if (walls) ASSERT_EQ(near.wall_contacts().size(), 200u) << "the walls must touch the ends of every row";
-    ASSERT_FALSE(same_bits(near.particles.v, far.particles.v)) << "another order of the sums must change bits for the test to mean anything";
-    for (long reach : {2L, 16L})
-      for (int threads : {2, 3})
-        for (int lagging = 0; lagging < threads; ++lagging) {
-          const Simulation& one = reach == 2 ? near : far;
-          const Simulation s = run(reach, threads, lagging);
-          const std::string what = std::string(walls ? "walls, " : "") + "reach " + std::to_string(reach) + ", " +
-                                   std::to_string(threads) + " threads, thread " + std::to_string(lagging) + " lagging";
-          EXPECT_TRUE(same_bits(one.particles.x, s.particles.x)) << what;
-          EXPECT_TRUE(same_bits(one.particles.v, s.particles.v)) << what;
-          EXPECT_TRUE(same_bits(one.particles.w, s.particles.w)) << what;
-        }
+    auto run = [&](bool shuffled, long sort_every, long block, int threads) {
+      Simulation s = make_pressed_lattice(walls);
+      if (shuffled) {
+        std::vector<std::size_t> order(s.particles.size());
+        std::iota(order.begin(), order.end(), 0);
+        std::shuffle(order.begin(), order.end(), std::mt19937_64(5));
+        s.particles.reorder(order);
+      }
+      s.params.sort_every = sort_every, s.params.sort_min_particles = 0;
+      s.params.load_block = block;
+      omp_set_num_threads(threads);
+      for (int k = 0; k < kSteps; ++k) s.advance();
+      return s;
+    };
+    const Simulation one = run(false, 0, 256, 1);
+    ASSERT_EQ(one.pair_contacts().size(), walls ? 2900u : 3000u) << "every sphere must touch its six neighbours";
+    if (walls) ASSERT_EQ(one.wall_contacts().size(), 200u) << "the walls must touch the ends of every row";
+    {  // another order of the sums changes bits: the force on each sphere summed backwards
+      const ContactList& c = one.pair_contacts();
+      std::vector<Vec3> forward(one.particles.size(), Vec3::Zero()), backward = forward;
+      for (std::size_t k = 0; k < c.size(); ++k) forward[c.slot_i[k]] += c.force(k), forward[c.slot_j[k]] -= c.force(k);
+      for (std::size_t k = c.size(); k-- > 0;) backward[c.slot_i[k]] += c.force(k), backward[c.slot_j[k]] -= c.force(k);
+      ASSERT_FALSE(same_bits(forward, backward)) << "another order of the sums must change bits for the test to mean anything";
+    }
+    for (const bool shuffled : {false, true})
+      for (const long sort_every : {0L, 7L})
+        for (const long block : {16L, 256L})
+          for (const int threads : {1, 2, 3}) {
+            if (!shuffled && sort_every == 0 && block == 256 && threads == 1) continue;  // `one`
+            const Simulation s = run(shuffled, sort_every, block, threads);
+            const std::string what = std::string(walls ? "walls, " : "") + (shuffled ? "shuffled, " : "") + "sorted every " +
+                                     std::to_string(sort_every) + ", blocks of " + std::to_string(block) + ", " +
+                                     std::to_string(threads) + " threads";
+            if (shuffled) ASSERT_NE(s.particles.id, one.particles.id) << what << ": the storage orders must differ";
+            EXPECT_TRUE(same_bits(by_id(one, one.particles.x), by_id(s, s.particles.x))) << what;
+            EXPECT_TRUE(same_bits(by_id(one, one.particles.v), by_id(s, s.particles.v))) << what;
+            EXPECT_TRUE(same_bits(by_id(one, one.particles.w), by_id(s, s.particles.w))) << what;
+            EXPECT_TRUE(same_bits(one.pair_contacts().spring, s.pair_contacts().spring)) << what;
+          }
   }
   omp_set_num_threads(threads_before);
 }
@@ -239,15 +250,11 @@ TEST(Determinism, SkinChangesNoBit) {
   }
 }
 
-// Storage order is speed only (SimParams::sort_every), up to the last bits: it sets the order in
-// which each particle's contact forces are added. A cloud stored in shuffled order and sorted
-// along the cells every 7 steps (with small load blocks, so that contacts both within and across
-// blocks are summed) ends, particle by particle (matched by id), where the same cloud never
-// sorted ends, within 1e-12 of the box size and of the speeds. Rounding differences (1e-16
-// relative per addition) grow by collisions; a wrong or missing force would shift positions by
-// ~v dt = 1e-5 of the box and more. (This sparse cloud in fact ends with the same bits: few
-// particles have three contacts at once.) The same contacts are found.
-TEST(Determinism, StorageOrderChangesOnlyTheLastBits) {
+// Storage order is speed only (SimParams::sort_every): the falling cloud with walls, stored in
+// shuffled order and sorted along the cells every 7 steps (blocks of 16 slots), ends particle by
+// particle (matched by id) with the bits of the same cloud never sorted, and with the same
+// contacts and springs.
+TEST(Determinism, StorageOrderChangesNoBit) {
   auto by_id = [](const Simulation& s, const std::vector<Vec3>& field) {
     std::vector<std::size_t> k(s.particles.size());
     std::iota(k.begin(), k.end(), 0);
@@ -255,11 +262,6 @@ TEST(Determinism, StorageOrderChangesOnlyTheLastBits) {
     std::vector<Vec3> out;
     for (std::size_t j : k) out.push_back(field[j]);
     return out;
-  };
-  auto largest_difference = [](const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
-    double worst = 0;
-    for (std::size_t k = 0; k < a.size(); ++k) worst = std::max(worst, (a[k] - b[k]).norm());
-    return worst;
   };
   constexpr int kSteps = 1500;
   Simulation plain = make_cloud();
@@ -277,14 +279,12 @@ TEST(Determinism, StorageOrderChangesOnlyTheLastBits) {
   for (int s = 0; s < kSteps; ++s) sorted.advance();
   ASSERT_NE(sorted.particles.id, plain.particles.id) << "the storage orders must differ for the test to mean anything";
   ASSERT_GT(plain.pair_contacts().size(), 0u) << "the test must exercise contacts";
-  const double box = 0.02;
-  const double dx = largest_difference(by_id(plain, plain.particles.x), by_id(sorted, sorted.particles.x));
-  const double dv = largest_difference(by_id(plain, plain.particles.v), by_id(sorted, sorted.particles.v));
-  std::printf("storage order: largest position difference %.3g m, velocity %.3g m/s\n", dx, dv);
-  EXPECT_LT(dx, 1e-12 * box);
-  EXPECT_LT(dv, 1e-12 * 0.2);  // the initial speeds are up to 0.2 m/s
+  EXPECT_TRUE(same_bits(by_id(plain, plain.particles.x), by_id(sorted, sorted.particles.x)));
+  EXPECT_TRUE(same_bits(by_id(plain, plain.particles.v), by_id(sorted, sorted.particles.v)));
+  EXPECT_TRUE(same_bits(by_id(plain, plain.particles.w), by_id(sorted, sorted.particles.w)));
   EXPECT_EQ(plain.pair_contacts().key_i, sorted.pair_contacts().key_i);
   EXPECT_EQ(plain.pair_contacts().key_j, sorted.pair_contacts().key_j);
+  EXPECT_TRUE(same_bits(plain.pair_contacts().spring, sorted.pair_contacts().spring));
 }
 
 // The threads' shares of a blocked loop (sim/block_times.hpp): contiguous runs that cover every

@@ -1,9 +1,9 @@
 // The step of motion (sim/motion.hpp): four particles at a time (AVX2) must give the bits of one
 // by one, and both the definition of eq. 2.38-2.47 written out here, coordinate by coordinate:
-// v' = (a_r v + (m g + F + sum of the contacts summed here) dt / m) b_r, w' likewise with
+// v' = (a_r v + F dt / m) b_r with F the net load of the force loop, w' likewise with
 // I = 2/5 m a^2, x' = x + v' dt; held particles stop; the last particle whose state is not finite
 // is reported; particles that leave a periodic box come back in at the other side; the loads
-// read are left zero for the next step.
+// are only read.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -22,19 +22,14 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// 1,003 particles (groups of four and a remainder) with random states and loads; every 7th held;
-// a fifth have contacts summed here (random pairs, some of them mere candidates), in runs and
-// alone, some in groups with held particles.
+// 1,003 particles (groups of four and a remainder) with random states and loads; every 7th held.
 struct MotionCase {
   std::vector<Vec3> x, v, w;
   std::vector<LoadSum> force, torque;  // their fourth doubles NaN: never read
   std::vector<Vec3i> image;
   std::vector<double> mass, radius;
   std::vector<std::uint8_t> fixed;
-  std::vector<int> csr_start, csr_entry;
-  std::vector<std::uint8_t> active;
-  std::vector<ContactSum> sum;
-  MotionConstants c{0.9995, 1 / 1.0005, 0.998, 1 / 1.002, 1e-5, Vec3(0.3, -0.2, -9.81)};
+  MotionConstants c{0.9995, 1 / 1.0005, 0.998, 1 / 1.002, 1e-5};
 
   // Periodic: in x and z over [0, 1), every third particle about to leave through x = 1, every
   // fifth through z = 0 (a step moves them 1e-6).
@@ -42,13 +37,6 @@ struct MotionCase {
     std::mt19937_64 rng(5);
     std::uniform_real_distribution<double> u(-1, 1);
     const auto vec = [&](double s) { return Vec3(s * u(rng), s * u(rng), s * u(rng)); };
-    const long pairs = 300;
-    for (long k = 0; k < pairs; ++k) {
-      active.push_back(u(rng) > -0.5);  // a quarter are mere candidates (whose sums are zero)
-      sum.push_back(active.back() ? ContactSum{vec(1e-3), vec(1e-4)} : ContactSum{});
-    }
-    csr_start.push_back(0);
-    std::uniform_int_distribution<int> pair(0, pairs - 1), count(1, 4);
     for (long i = 0; i < n; ++i) {
       x.push_back(vec(1)), v.push_back(vec(0.1)), w.push_back(vec(10)), force.push_back({vec(1e-3), kNaN}), torque.push_back({vec(1e-6), kNaN});
       image.push_back(Vec3i(1, -2, 3));
@@ -59,9 +47,6 @@ struct MotionCase {
       }
       mass.push_back(1e-5 * (1.5 + u(rng))), radius.push_back(1e-3 * (1.5 + u(rng)));
       fixed.push_back(i % 7 == 3);
-      if (i % 5 == 0 || (i > 500 && i < 520))
-        for (int e = count(rng); e > 0; --e) csr_entry.push_back(2 * pair(rng) + (u(rng) > 0));
-      csr_start.push_back(static_cast<int>(csr_entry.size()));
     }
     if (periodic) c.box.axis = {true, false, true}, c.box.lo = Vec3::Zero(), c.box.hi = Vec3::Ones();
   }
@@ -74,11 +59,7 @@ struct MotionCase {
             .radius = radius.data(),
             .fixed = any_fixed ? fixed.data() : nullptr,
             .force = force.data(),
-            .torque = torque.data(),
-            .csr_start = csr_start.data(),
-            .csr_entry = csr_entry.data(),
-            .active = active.data(),
-            .sum = sum.data()};
+            .torque = torque.data()};
   }
 };
 
@@ -91,13 +72,7 @@ Expected definition(const MotionCase& m, long i, bool any_fixed) {
   if (any_fixed && m.fixed[i]) return {m.x[i], Vec3::Zero(), Vec3::Zero(), m.image[i]};
   Expected e{Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), m.image[i]};
   for (int d = 0; d < 3; ++d) {
-    double f = m.mass[i] * m.c.gravity[d] + m.force[i].v[d], t = m.torque[i].v[d];
-    for (int q = m.csr_start[i]; q < m.csr_start[i + 1]; ++q) {
-      const int k = m.csr_entry[q] >> 1;
-      if (!m.active[k]) continue;
-      f += (m.csr_entry[q] & 1) ? -m.sum[k].force[d] : m.sum[k].force[d];
-      t += m.radius[i] * m.sum[k].torque_per_radius[d];
-    }
+    const double f = m.force[i].v[d], t = m.torque[i].v[d];
     const double inertia = 0.4 * m.mass[i] * m.radius[i] * m.radius[i];
     e.v[d] = (m.c.ar * m.v[i][d] + f * (m.c.dt / m.mass[i])) * m.c.br;
     e.w[d] = (m.c.at * m.w[i][d] + t * (m.c.dt / inertia)) * m.c.bt;
@@ -138,9 +113,8 @@ TEST(Motion, FourAtATimeGiveTheDefinitionsBits) {
             ASSERT_EQ(m.v[i], e.v) << what;
             ASSERT_EQ(m.w[i], e.w) << what;
             ASSERT_EQ(m.image[i], e.image) << what;
-            // The loads read are cleared for the next force loop (BlockLoads::zeroed).
-            ASSERT_EQ(m.force[i].v, moved ? Vec3::Zero() : before.force[i].v) << what;
-            ASSERT_EQ(m.torque[i].v, moved ? Vec3::Zero() : before.torque[i].v) << what;
+            ASSERT_EQ(m.force[i].v, before.force[i].v) << what;
+            ASSERT_EQ(m.torque[i].v, before.torque[i].v) << what;
             wrapped += e.image != before.image[i];
           }
         if (periodic && last - first > 100) EXPECT_GT(wrapped, 200) << "the case must move particles across the boundaries";

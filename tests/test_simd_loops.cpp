@@ -16,8 +16,8 @@
 #include "core/error.hpp"
 #include "generation/fill.hpp"
 #include "sim/find_contacts.hpp"
-#include "sim/simulation.hpp"
 #include "simd/simd.hpp"
+#include "sim/simulation.hpp"
 
 #include "same_bits.hpp"
 
@@ -181,12 +181,8 @@ Simulation law_scene() {
   return sim;
 }
 
-// The four-wide law keeps its results in two ways: where all four contacts of a group are summed
-// in the loop and only loads are kept (SimParams::keep_pair_results false), their loads as whole
-// vectors; else lane by lane through keep_pair_result. Both end with the plain loops' bits: runs
-// keeping every pair result and only the loads, with blocks of 256 slots (every contact summed in
-// the loop) and of 8 slots with a reach of 1 (many contacts summed in the integration: groups of
-// both kinds).
+// The four-wide law ends with the plain loops' bits: runs keeping every pair contact's normal and
+// keeping none (SimParams::keep_pair_results false), with blocks of 256 slots and of 8.
 TEST(SimdLoops, LawEndsARunWithThePlainLoopsBits) {
   if (!simd_loops_available()) GTEST_SKIP() << "no AVX2 on this processor: only the plain loops run";
   for (const long block : {256L, 8L}) {
@@ -194,7 +190,7 @@ TEST(SimdLoops, LawEndsARunWithThePlainLoopsBits) {
     ASSERT_GT(std::count(plain.particles.fixed.begin(), plain.particles.fixed.end(), 1), 20);
     lean.params.keep_pair_results = false;
     for (Simulation* sim : {&plain, &kept, &lean}) {
-      sim->params.load_block = block, sim->params.load_reach = block == 8 ? 1 : 0;
+      sim->params.load_block = block;
       set_simd_loops(sim != &plain);
       for (int s = 0; s < 400; ++s) sim->advance();
       EXPECT_GT(sim->bond_present_contacts(false), 50u);
@@ -203,7 +199,7 @@ TEST(SimdLoops, LawEndsARunWithThePlainLoopsBits) {
     set_simd_loops(true);
     ASSERT_GT(std::count(plain.pair_contacts().bonded.begin(), plain.pair_contacts().bonded.end(), 1), 20);
     for (const Simulation* wide : {&kept, &lean}) {
-      const std::string what = std::string(wide == &kept ? "every result kept" : "loads only") + ", blocks of " + std::to_string(block);
+      const std::string what = std::string(wide == &kept ? "normals kept" : "no normals") + ", blocks of " + std::to_string(block);
       EXPECT_TRUE(same_bits(plain.particles.x, wide->particles.x)) << what;
       EXPECT_TRUE(same_bits(plain.particles.v, wide->particles.v)) << what;
       EXPECT_TRUE(same_bits(plain.particles.w, wide->particles.w)) << what;

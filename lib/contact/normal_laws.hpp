@@ -19,7 +19,7 @@ namespace dem {
 struct CundallNormal {
   static constexpr bool four_wide = true;
   template <class P, class L, class M>
-  static L elastic(const P& p, const L& u, M& /*bonded*/) {
+  [[gnu::always_inline]] static L elastic(const P& p, const L& u, M& /*bonded*/) {
     return lanes::only_where(lanes::less(L(0.0), u), p.kn * u);
   }
 };

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <thread>
@@ -43,12 +42,11 @@ struct ChunkInput {
   bool simd;  // simd_loops_on()
 };
 
-// The candidates [first, last) of one block; contacts whose two slots lie before `reach_end` (in
-// this block or the `reach` after it) are added to both particles' loads. Periodic: distances to
-// the nearest image; Fixed: some particles are held in place. Both are template parameters so
-// that a scene without them pays nothing.
+// The candidates [first, last) of one block. Periodic: distances to the nearest image; Fixed: some
+// particles are held in place. Both are template parameters so that a scene without them pays
+// nothing.
 template <class Normal, bool Periodic, bool Fixed>
-double pair_chunk(const ChunkInput& chunk, long first, long last, int reach_end) {
+double pair_chunk(const ChunkInput& chunk, long first, long last) {
   const PeriodicBox& box = chunk.in.periodic;
   const MaterialTable& materials = chunk.in.materials;
   const double dt = chunk.in.dt;
@@ -60,7 +58,7 @@ double pair_chunk(const ChunkInput& chunk, long first, long last, int reach_end)
   const int m = find_contacts<Periodic>(chunk.candidates, box, first, last, found, chunk.simd);
   // Pass 2 (pair_law.hpp): the law on them.
   if constexpr (std::is_same_v<Normal, CundallNormal>)
-    if (chunk.simd && m >= kMinSimdLaw) return cundall_pair_law_simd<Fixed>(a, materials, dt, found, m, reach_end, chunk.in.any_bonds);
+    if (chunk.simd && m >= kMinSimdLaw) return cundall_pair_law_simd<Fixed>(a, materials, dt, found, m, chunk.in.any_bonds);
   // Pass 2, in three loops over the chunk's contacts: their kinematics, their springs turned into
   // the tangent plane, the law. Each loop is short and its contacts independent, so the processor
   // overlaps the divisions and square roots of several contacts; in one long loop each contact
@@ -89,17 +87,11 @@ double pair_chunk(const ChunkInput& chunk, long first, long last, int reach_end)
     const ContactKinematics& c = kin[e];
     const PairParams& params = materials.pair(a.material[i], a.material[j]);
     const ContactForce f = ContactLaw<Normal>::evaluate_in_plane(params, c, dt, a.spring[k], a.bonded[k]);
-    keep_pair_result(a, k, i, j, c.n, f.on_i, c.n.cross(f.tangential), reach_end);
+    keep_pair_result(a, k, c.n, f.on_i, c.n.cross(f.tangential));
     worst = std::max(worst, relative_overlap_if_larger(c.overlap, std::min(a.radius[i], a.radius[j]), worst));
   }
   return worst;
 }
-
-// set_lagging_thread_for_tests: set between steps, read by the loop's threads.
-struct LaggingThread {
-  int thread = -1;
-  int microseconds = 0;
-} lagging;
 
 // Waits until block b of this force loop (`epoch`) is done: spins, as a barrier does.
 inline void wait_until_done(std::vector<long>& done, long b, long epoch) {
@@ -124,7 +116,7 @@ struct WallScratch {
 // The wall candidates of run r (one particle's, in order) after its pair contacts: whether each is a
 // contact, its law, its loads added to the particle's. Returns the largest relative overlap.
 template <class Normal>
-double wall_run(const ForceLoopInput& in, ContactList& wc, BlockLoads& out, long r, WallScratch& scratch) {
+double wall_run(const ForceLoopInput& in, ContactList& wc, ForceBlocks& out, long r, WallScratch& scratch) {
   const Particles& p = in.particles;
   const int first = in.wall_runs[r], n = in.wall_runs[r + 1] - first;
   const int i = wc.slot_i[first];
@@ -180,96 +172,132 @@ double wall_run(const ForceLoopInput& in, ContactList& wc, BlockLoads& out, long
   return worst;
 }
 
-// Whether block o's contacts are added before block b's (two blocks at most `reach` apart, which
-// write common blocks; BlockLoads): within a tile in block order, across two tiles the even one first.
-inline bool added_before(long o, long b, long tile) {
-  const long to = o / tile, tb = b / tile;
-  return to == tb ? o < b : to % 2 < tb % 2;
+// The pair contacts of particles [lo, hi) summed into their loads (written, not added to), each
+// particle's in the order of its contacts' keys (ForceBlocks::by_key): f for i, -f for j (the
+// sign bit flipped: exact), and r n x f_t. Without a branch (whether a candidate touches is a coin
+// toss to the branch predictor): mere candidates hold zeros (ContactList), and adding a zero to a
+// sum that starts at +0 never changes a bit, so the candidate set, which depends on when the list
+// was rebuilt, does not either. Four-wide with AVX2 (a contact's force and torque one masked load
+// each, a particle's loads one aligned store each), else one by one: the same additions, so the
+// same bits.
+void sum_pair_contacts_plain(const ForceBlocks& out, const ContactSum* sum, const double* radius, long lo, long hi) {
+  for (long i = lo; i < hi; ++i) {
+    Vec3 force = Vec3::Zero(), torque = Vec3::Zero();
+    for (int e = out.by_key_start[i]; e < out.by_key_start[i + 1]; ++e) {
+      const unsigned code = static_cast<unsigned>(out.by_key[e]);
+      const ContactSum& c = sum[code >> 1];
+      force += (code & 1) ? Vec3(-c.force) : c.force;  // eq. 2.31-2.32
+      torque += radius[i] * c.torque_per_radius;       // eq. 2.33-2.34
+    }
+    out.force[i].v = force;
+    out.torque[i].v = torque;
+  }
+}
+#ifdef DEM_SIMD_LOOPS
+[[gnu::target("avx2")]] void sum_pair_contacts_avx2(const ForceBlocks& out, const ContactSum* sum, const double* radius, long lo,
+                                                    long hi) {
+  const __m256i xyz = _mm256_setr_epi64x(-1, -1, -1, 0);
+  const int* const by_key = out.by_key.data();
+  const int* const start = out.by_key_start.data();
+  for (long i = lo; i < hi; ++i) {
+    const __m256d r = _mm256_set1_pd(radius[i]);
+    __m256d f = _mm256_setzero_pd(), t = _mm256_setzero_pd();
+    for (int e = start[i]; e < start[i + 1]; ++e) {
+      const unsigned code = static_cast<unsigned>(by_key[e]);
+      const double* c = sum[code >> 1].force.data();
+      const __m256d sign = _mm256_castsi256_pd(_mm256_set1_epi64x(static_cast<long long>(code & 1) << 63));
+      f = _mm256_add_pd(f, _mm256_xor_pd(_mm256_maskload_pd(c, xyz), sign));
+      t = _mm256_add_pd(t, _mm256_mul_pd(r, _mm256_maskload_pd(c + 3, xyz)));
+    }
+    _mm256_store_pd(out.force[i].v.data(), f);  // a LoadSum's fourth double is never read
+    _mm256_store_pd(out.torque[i].v.data(), t);
+  }
+}
+#endif
+void sum_pair_contacts(const ForceBlocks& out, const ContactSum* sum, const double* radius, long lo, long hi) {
+#ifdef DEM_SIMD_LOOPS
+  if (out.simd) return sum_pair_contacts_avx2(out, sum, radius, lo, hi);
+#endif
+  sum_pair_contacts_plain(out, sum, radius, lo, hi);
+}
+
+// The net loads of block b's particles (ForceBlocks): each one's pair contacts in key order, then
+// its wall contacts, then the body forces. Every pair contact of the block's particles is computed.
+template <class Normal>
+double finish_block(const ForceLoopInput& in, const ContactList& pc, ContactList& wc, ForceBlocks& out, long b,
+                    WallScratch& scratch) {
+  const Particles& p = in.particles;
+  const long lo = b * out.block, hi = std::min(static_cast<long>(p.size()), lo + out.block);
+  sum_pair_contacts(out, pc.sum.data(), p.radius.data(), lo, hi);
+  double worst = 0;
+  for (int q = in.wall_block_first[b]; q < in.wall_block_first[b + 1]; ++q)
+    worst = std::max(worst, wall_run<Normal>(in, wc, out, in.wall_run_order[q], scratch));
+  for (long i = lo; i < hi; ++i) out.body.add_to(p.mass[i], out.force[i].v);
+  return worst;
 }
 
 template <class Normal, bool Periodic, bool Fixed>
-double block_forces(const ForceLoopInput& in, ContactList& pc, ContactList& wc, BlockLoads& out) {
+double block_forces(const ForceLoopInput& in, ContactList& pc, ContactList& wc, ForceBlocks& out) {
   const long blocks = static_cast<long>(out.first.size()) - 1;
-  const long slots = static_cast<long>(in.particles.size());
-  const long reach = out.reach, tile = out.reach;  // tiles of `reach` blocks (BlockLoads)
   out.times.fit(blocks, [&](long b) { return out.first[b + 1] - out.first[b] + 1; });  // candidates, until timed
   out.done.resize(blocks);
-  // Where the last integration did not zero the loads as it read them (the first step, a failed
-  // step, a new particle count), all of them here: a block's first writer may be of either phase.
-  if (!out.zeroed) {
-    std::memset(static_cast<void*>(out.force.data()), 0, slots * sizeof(LoadSum));
-    std::memset(static_cast<void*>(out.torque.data()), 0, slots * sizeof(LoadSum));
-  }
-  const ChunkInput chunk{in, CandidateArrays(in.particles, pc),
-                         PairLawArrays(in.particles, pc, out.force, out.torque, in.keep_pair_results), simd_loops_on()};
+  const ChunkInput chunk{in, CandidateArrays(in.particles, pc), PairLawArrays(in.particles, pc, in.keep_pair_results),
+                         simd_loops_on()};
   double worst = 0;
 #pragma omp parallel reduction(max : worst)
   {
     const long threads = omp_get_num_threads(), t = omp_get_thread_num();
     // Each thread takes a contiguous run of blocks holding about its share of the last step's
-    // time (sim/block_times.hpp), which may begin or end inside a tile.
+    // time (sim/block_times.hpp): candidates are stored along the particles' order, so a thread
+    // mostly reads particles that stay in its own core's cache.
     const long start = out.times.run_start(t, threads), end = out.times.run_start(t + 1, threads);
-    // Two phases: the even tiles, then the odd ones (BlockLoads). In each, a thread takes its tiles
-    // from the last down and each tile's blocks in order: the tile it shares with the next thread
-    // comes first, the one it shares with the one before last, so that neither waits long. A block
-    // next to another thread's run waits for that thread's blocks within reach that come before it
-    // (`done`: flags that order whole blocks, as a barrier would; no force is ever added
-    // atomically). So the tiles, not the threads, set the order of the sums: the same bits for any
-    // thread count.
+    static thread_local WallScratch scratch;
+    static thread_local std::vector<long> later;
+    WallScratch& mine = scratch;  // the thread's own, looked up once (each use of a thread_local looks it up)
+    std::vector<long>& deferred = later;
+    deferred.clear();
     const long tick = out.epoch;
-    for (long phase = 0; phase < 2 && start < end; ++phase)
-      for (long tl = (end - 1) / tile; tl >= start / tile; --tl) {
-        if (tl % 2 != phase) continue;
-        for (long b = std::max(start, tl * tile); b < std::min(end, (tl + 1) * tile); ++b) {
-          for (long o = std::max(0L, b - reach); o <= std::min(blocks - 1, b + reach); ++o)
-            if ((o < start || o >= end) && added_before(o, b, tile)) wait_until_done(out.done, o, tick);
-          if (t == lagging.thread) std::this_thread::sleep_for(std::chrono::microseconds(lagging.microseconds));
-          const long tb = BlockTimes::now();
-          const int reach_end = static_cast<int>(std::min(slots, (b + reach + 1) * out.block));
-          for (long first = out.first[b]; first < out.first[b + 1]; first += kChunk) {
-            const long last = std::min(out.first[b + 1], first + kChunk);
-            worst = std::max(worst, pair_chunk<Normal, Periodic, Fixed>(chunk, first, last, reach_end));
-          }
-          std::atomic_ref<long>(out.done[b]).store(tick, std::memory_order_release);
-          out.times.record(b, tb);
-        }
+    const auto pairs_of = [&](long b) {
+      for (long first = out.first[b]; first < out.first[b + 1]; first += kChunk) {
+        const long last = std::min(out.first[b + 1], first + kChunk);
+        worst = std::max(worst, pair_chunk<Normal, Periodic, Fixed>(chunk, first, last));
       }
-    // Then the wall contacts of the run's particles, block by block, each particle's after all its
-    // pair contacts: those come from its own block and the `reach` before it, so the thread waits
-    // for the other's blocks there. (Taken by the thread whose core holds the particles, and timed
-    // with their blocks: in a loop of its own, its runs split among the threads in id order, two
-    // threads were only 1.6 times as fast as one; settle 10^4, two threads: 6 % off the step.)
-    if (in.wall_runs.size() > 1) {
-      static thread_local WallScratch scratch;
-      WallScratch& mine = scratch;  // the thread's own, looked up once (each use of a thread_local looks it up)
-      for (long o = std::max(0L, start - reach); o < start; ++o) wait_until_done(out.done, o, tick);
-      for (long b = start; b < end; ++b) {
-        if (in.wall_block_first[b] == in.wall_block_first[b + 1]) continue;
-        const long tb = BlockTimes::now();
-        for (int q = in.wall_block_first[b]; q < in.wall_block_first[b + 1]; ++q)
-          worst = std::max(worst, wall_run<Normal>(in, wc, out, in.wall_run_order[q], mine));
-        out.times.add(b, tb);
-      }
+      std::atomic_ref<long>(out.done[b]).store(tick, std::memory_order_release);
+    };
+    // The blocks the next thread's particles need come first, so that it need not wait for them.
+    const long early = end < blocks ? std::clamp(out.needed_from[end], start, end) : end;
+    for (long b = early; b < end; ++b) {
+      const long tb = BlockTimes::now();
+      pairs_of(b);
+      out.times.record(b, tb);
+    }
+    for (long b = start; b < end; ++b) {
+      const long tb = BlockTimes::now();
+      if (b < early) pairs_of(b);
+      // Finished now, while its contacts are in cache, unless some lie in another thread's blocks.
+      if (out.needs[b] >= start) worst = std::max(worst, finish_block<Normal>(in, pc, wc, out, b, mine));
+      else deferred.push_back(b);
+      if (b < early) out.times.record(b, tb);
+      else out.times.add(b, tb);
+    }
+    for (long b : deferred) {
+      for (long o = out.needs[b]; o < start; ++o) wait_until_done(out.done, o, tick);
+      const long tb = BlockTimes::now();  // after the wait: a block's time is its own work
+      worst = std::max(worst, finish_block<Normal>(in, pc, wc, out, b, mine));
+      out.times.add(b, tb);
     }
   }
   return worst;
 }
 
 template <class Normal>
-double all_forces(const ForceLoopInput& in, ContactList& pairs, ContactList& walls, BlockLoads& loads) {
+double all_forces(const ForceLoopInput& in, ContactList& pairs, ContactList& walls, ForceBlocks& loads) {
   if (in.periodic.any())
     return in.any_fixed ? block_forces<Normal, true, true>(in, pairs, walls, loads) : block_forces<Normal, true, false>(in, pairs, walls, loads);
   return in.any_fixed ? block_forces<Normal, false, true>(in, pairs, walls, loads) : block_forces<Normal, false, false>(in, pairs, walls, loads);
 }
 
 }  // namespace
-
-void set_lagging_thread_for_tests(int thread, int microseconds) { lagging = {thread, microseconds}; }
-
-long automatic_load_reach(long particles, long block) {
-  const double layer = std::cbrt(static_cast<double>(particles) * particles);  // n^(2/3)
-  return std::clamp(static_cast<long>(std::ceil(1.2 * layer / static_cast<double>(block))), 6L, 48L);
-}
 
 void counted_wall_touches(const Particles& p, const std::vector<WallGeometry>& geometry, const ContactList& wc, int first,
                           int n, Vec3* to_wall, std::uint8_t* touching, std::uint8_t* take, int* order) {
@@ -343,7 +371,7 @@ const char* variant_name(ForceVariant v) {
 }
 
 double compute_contact_forces(const ForceLoopInput& in, ForceVariant variant, ContactList& pairs, ContactList& walls,
-                              BlockLoads& loads) {
+                              ForceBlocks& loads) {
   switch (variant) {
     case ForceVariant::Cundall: return all_forces<CundallNormal>(in, pairs, walls, loads);
     case ForceVariant::Liu: return all_forces<LiuNormal>(in, pairs, walls, loads);

@@ -6,6 +6,7 @@
 
 #include "contact/contact_list.hpp"
 #include "sim/block_times.hpp"
+#include "sim/body_forces.hpp"
 #include "sim/load_sum.hpp"
 #include "state/materials.hpp"
 #include "state/particles.hpp"
@@ -32,48 +33,34 @@ struct ForceLoopInput {
   bool keep_pair_results;  // SimParams::keep_pair_results
 };
 
-// Per storage slot, the loads the force loop adds as it goes (no per-contact result to read back):
-// the pair contacts of a block of storage slots [b block, (b + 1) block) whose other particle lies
-// in the same block or one of the `reach` blocks after it, added to both particles; then each
-// particle's wall contacts. The order of the pair sums: blocks form tiles of `reach` blocks (so a
-// block writes into its own tile and the next one only); the even tiles come first, then the odd
-// ones, and each tile's blocks in order, each block's contacts in their stored order. No two tiles
-// of a phase write the same block, and each tile is swept once, its particles and the next tile's
-// staying in cache (reach + 1 phases of single blocks, the earlier order, swept the particles
-// reach + 1 times a step: 10^6 spheres on a lattice, one thread, 17 % slower). Pair contacts
-// between blocks farther apart are summed afterwards per particle (Simulation::integrate). Blocks,
-// tiles and phases depend on the storage only, never on the thread count: the same bits for any
-// count.
-struct BlockLoads {
-  long block;                     // storage slots per block
-  long reach;                     // blocks after a block whose contacts with it are summed here
-                                  // (at least 1)
-  const std::vector<long>& first; // where each block's candidates start (+ the end): those whose
-                                  // smaller slot lies in the block (stored so, place_by_storage)
-  BlockTimes& times;              // per block: its time at the last step, by which the threads
-                                  // share the blocks out
-  std::vector<long>& done;        // per block: the epoch of the force loop that last summed it
-  long epoch;                     // this force loop's: unlike any before it
-  std::vector<LoadSum>& force;    // per slot: sum of those contact forces [N]
-  std::vector<LoadSum>& torque;   // per slot: sum of a n x f_t, eq. 2.33-2.34 [N m]
-  bool zeroed;                    // force and torque hold zeros already (the last integration
-                                  // cleared them as it read them), else the loop zeroes them
+// Each particle's net load, summed in the force loop in one order that depends on neither the
+// storage order nor the thread count (docs/architecture.md): its pair contacts in the order of
+// their keys, then its wall contacts in wall order, then the body forces. Each pair contact's law
+// runs once and leaves its sum (ContactList::sum) in the group of its smaller storage slot; a
+// particle's pair contacts therefore all lie in the groups of its own block or earlier ones, and
+// it is summed ("finished") right after its block's contacts, while they are in cache. Blocks
+// whose particles have contacts in another thread's blocks are finished at the end of the
+// thread's run, once those are done (`done`). The threads share the blocks out by their times at
+// the last step.
+struct ForceBlocks {
+  long block;                       // storage slots per block: a thread's unit of work
+  const std::vector<long>& first;   // where each block's candidates start (+ the end): those whose
+                                    // smaller slot lies in the block (stored so, place_by_storage)
+  const std::vector<long>& needs;   // per block: the first block holding a pair candidate of its
+                                    // particles (their contacts are summed once it and those after
+                                    // it are done)
+  const std::vector<long>& needed_from;  // per block b: the smallest `needs` of blocks b and after
+  const std::vector<int>& by_key_start;  // per slot: where its candidates start in by_key (+ the end)
+  const std::vector<int>& by_key;   // each slot's pair candidates in key order: 2k for pair k seen
+                                    // from its i, 2k + 1 from its j
+  BlockTimes& times;                // per block: its time at the last step
+  std::vector<long>& done;          // per block: the epoch of the force loop that last computed it
+  long epoch;                       // this force loop's: unlike any before it
+  const BodyForces& body;           // added last
+  bool simd;                        // simd_loops_on()
+  std::vector<LoadSum>& force;      // per slot: the net force [N] (written, not added to)
+  std::vector<LoadSum>& torque;     // per slot: the net torque [N m]
 };
-
-// SimParams::load_reach 0 (automatic) for `particles` particles in blocks of `block` slots: about
-// 1.2 layers of spheres of a cube of them (storage is sorted along z, then y, then x:
-// Simulation::sort_storage), at least 6 and at most 48 blocks. So the contacts between layers lie
-// within reach at any size (10^6 spheres on a lattice, one thread: 21.5 s against 25.3 s with a
-// reach of 24 blocks, whose vertical contacts were summed in the integration); at 48 blocks of 256
-// a tile and the next still fit in a core's cache (2 MB). At least 6: a bed wider than high holds
-// more per layer than a cube (the settle of 10^4 settles into layers of about 1,000 spheres: with
-// 4 blocks, 5 % slower on one thread and 4 % on two; 8 blocks: as 6 on one thread, slower on two,
-// whose runs then share tiles; the chute and a lattice of 10^4 the same with 5, 8 or 12).
-long automatic_load_reach(long particles, long block);
-
-// Tests only: thread `thread` of the pair loop pauses `microseconds` before each of its blocks, so
-// that a block summed out of its order (a missing wait) shows in the bits; thread -1: none.
-void set_lagging_thread_for_tests(int thread, int microseconds);
 
 // Which instantiation runs: "cundall" (also any law while no contact is bonded: without bonds
 // liu and mendes act exactly as cundall), "liu", "mendes" or "mixed".
@@ -141,12 +128,11 @@ void counted_wall_touches(const Particles& p, const std::vector<WallGeometry>& g
                           int n, Vec3* to_wall, std::uint8_t* touching, std::uint8_t* take, int* order);
 
 // For every candidate of `pairs` and `walls`: decides whether it is a contact (`active`: touching,
-// or holding by a bond), and if so fills .normal and .sum (of pair contacts summed in `loads`, only
-// where in.keep_pair_results) and updates its history; a candidate that is no contact gets a zero
-// .sum and loses its spring. Pair contacts within a block or between blocks at most loads.reach
-// apart, and wall contacts, are also summed into `loads`. Returns the largest overlap relative to
-// the smaller radius of its contact.
+// or holding by a bond), and if so fills .sum and .normal (of pair contacts only where
+// in.keep_pair_results) and updates its history; a candidate that is no contact gets a zero .sum
+// and loses its spring. Then each particle's net load into `blocks`. Returns the largest overlap
+// relative to the smaller radius of its contact.
 double compute_contact_forces(const ForceLoopInput& in, ForceVariant variant, ContactList& pairs, ContactList& walls,
-                              BlockLoads& loads);
+                              ForceBlocks& blocks);
 
 }  // namespace dem

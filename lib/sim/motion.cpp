@@ -10,22 +10,6 @@ namespace dem {
 
 namespace {
 
-// Particle i's contacts summed here, added to its loads in the fixed order of
-// index_contacts_per_particle: the same bits for any thread count. Mere candidates are skipped
-// (they hold exact zeros, ContactList), here and in the force loop's sums, so the candidate set,
-// which depends on when the list was rebuilt, never changes a bit of the result; skipping reads a
-// byte per candidate instead of 48.
-inline void add_contacts_summed_here(const MotionArrays& a, long i, Vec3& force, Vec3& torque) {
-  for (int e = a.csr_start[i]; e < a.csr_start[i + 1]; ++e) {
-    const unsigned code = static_cast<unsigned>(a.csr_entry[e]);
-    const long k = code >> 1;
-    if (!a.active[k]) continue;
-    // Torques, eq. 2.33-2.34: M = a n x f_t for i and j alike (M_j = (a_j / a_i) M_i).
-    force += (code & 1) ? Vec3(-a.sum[k].force) : a.sum[k].force;  // eq. 2.31-2.32
-    torque += a.radius[i] * a.sum[k].torque_per_radius;
-  }
-}
-
 // One test per coordinate, no branch (Eigen's allFinite on each vector cost 7 % of a settle's time).
 inline bool finite_state(const MotionArrays& a, long i) {
   const Vec3 s = (a.x[i] + a.v[i]) + a.w[i];
@@ -36,15 +20,11 @@ inline bool finite_state(const MotionArrays& a, long i) {
 // new state is not finite.
 inline bool move_one(const MotionArrays& a, const MotionConstants& c, long i) {
   if (a.fixed && a.fixed[i]) {
-    a.v[i] = a.w[i] = a.force[i].v = a.torque[i].v = Vec3::Zero();
+    a.v[i] = a.w[i] = Vec3::Zero();
     return true;
   }
-  Vec3 force = a.mass[i] * c.gravity + a.force[i].v;
-  Vec3 torque = a.torque[i].v;
-  a.force[i].v = a.torque[i].v = Vec3::Zero();
-  add_contacts_summed_here(a, i, force, torque);
-  a.v[i] = (c.ar * a.v[i] + force * (c.dt / a.mass[i])) * c.br;
-  a.w[i] = (c.at * a.w[i] + torque * (c.dt / sphere_inertia(a.mass[i], a.radius[i]))) * c.bt;
+  a.v[i] = (c.ar * a.v[i] + a.force[i].v * (c.dt / a.mass[i])) * c.br;
+  a.w[i] = (c.at * a.w[i] + a.torque[i].v * (c.dt / sphere_inertia(a.mass[i], a.radius[i]))) * c.bt;
   a.x[i] += a.v[i] * c.dt;
   if (c.box.any()) c.box.wrap(a.x[i], a.image[i]);
   return finite_state(a, i);
@@ -74,11 +54,10 @@ using simd::by_particle;
 [[gnu::target("avx2")]] long move_four_at_a_time(const MotionArrays& a, const MotionConstants& c, long first, long last) {
   const __m256d ar = _mm256_set1_pd(c.ar), br = _mm256_set1_pd(c.br), at = _mm256_set1_pd(c.at), bt = _mm256_set1_pd(c.bt);
   const __m256d dt = _mm256_set1_pd(c.dt), two_fifths = _mm256_set1_pd(0.4), largest = _mm256_set1_pd(DBL_MAX);
-  const __m256d sign = _mm256_set1_pd(-0.0), zero = _mm256_setzero_pd();
+  const __m256d sign = _mm256_set1_pd(-0.0);
   // Four particles' vectors in three registers (simd/simd.hpp), and what they are compared with:
   // the period (an axis that is not periodic: no bound), to see which particles left it.
-  __m256d gravity[3], period_lo[3], period_hi[3];
-  by_axis(c.gravity, gravity);
+  __m256d period_lo[3], period_hi[3];
   Vec3 lo, hi;
   for (int axis = 0; axis < 3; ++axis) {
     lo[axis] = c.box.axis[axis] ? c.box.lo[axis] : -std::numeric_limits<double>::infinity();
@@ -100,19 +79,10 @@ using simd::by_particle;
     double* const v = a.v[i].data();
     double* const w = a.w[i].data();
     const __m256d m = _mm256_loadu_pd(a.mass + i), r = _mm256_loadu_pd(a.radius + i);
-    __m256d mass[3], to_v[3], to_w[3], force[3], torque[3];
-    by_particle(m, mass);
+    __m256d to_v[3], to_w[3], force[3], torque[3];
     by_particle(dt / m, to_v);                             // dt / m
     by_particle(dt / (((two_fifths * m) * r) * r), to_w);  // dt / I, I = sphere_inertia(m, a)
     packed_loads(a.force + i, force), packed_loads(a.torque + i, torque);
-    for (int q = 0; q < 3; ++q) force[q] = mass[q] * gravity[q] + force[q];
-    for (int p = 0; p < 4; ++p) _mm256_store_pd(a.force[i + p].v.data(), zero), _mm256_store_pd(a.torque[i + p].v.data(), zero);
-    if (a.csr_start[i + 4] != a.csr_start[i]) {  // some have contacts summed here: added one by one
-      alignas(32) Vec3 f[4], t[4];
-      for (int q = 0; q < 3; ++q) _mm256_store_pd(f[0].data() + 4 * q, force[q]), _mm256_store_pd(t[0].data() + 4 * q, torque[q]);
-      for (int p = 0; p < 4; ++p) add_contacts_summed_here(a, i + p, f[p], t[p]);
-      for (int q = 0; q < 3; ++q) force[q] = _mm256_load_pd(f[0].data() + 4 * q), torque[q] = _mm256_load_pd(t[0].data() + 4 * q);
-    }
     int broken = 0, left = 0;
     for (int q = 0; q < 3; ++q) {
       const __m256d vq = (ar * _mm256_loadu_pd(v + 4 * q) + force[q] * to_v[q]) * br;

@@ -1,13 +1,11 @@
 #pragma once
-// One step of motion (eq. 2.38-2.47) once the force loop has summed the contact loads: each
-// particle's net load (gravity, the force loop's sums, then its contacts summed here), and its new
-// velocities and position. Four particles at a time with AVX2 (simd/simd.hpp) where the processor
+// One step of motion (eq. 2.38-2.47) once the force loop has summed each particle's net load
+// (sim/force_loop.hpp ForceBlocks): its new velocities and position. Four particles at a time with AVX2 (simd/simd.hpp) where the processor
 // has it, else one by one: per coordinate the same operations in the same order, so the same bits.
 #include <cfloat>
 #include <cmath>
 #include <cstdint>
 
-#include "contact/contact_list.hpp"
 #include "core/types.hpp"
 #include "sim/load_sum.hpp"
 #include "state/particles.hpp"
@@ -19,7 +17,6 @@ namespace dem {
 // translation (ar, br) and the rotation (at, bt).
 struct MotionConstants {
   double ar, br, at, bt, dt;
-  Vec3 gravity;
   PeriodicBox box;  // a particle that leaves the period comes back in at the other side
 };
 
@@ -32,18 +29,11 @@ struct MotionArrays {
   const double* mass;
   const double* radius;
   const std::uint8_t* fixed;  // null where no particle is held
-  LoadSum* force;             // the force loop's sums (BlockLoads), zeroed once read
-  LoadSum* torque;
-  // The contacts summed here (Simulation::index_contacts_per_particle): particle i's are entries
-  // csr_start[i] to csr_start[i + 1] of csr_entry, 2k for pair k seen from its i, 2k + 1 from its j.
-  const int* csr_start;
-  const int* csr_entry;
-  const std::uint8_t* active;
-  const ContactSum* sum;
+  const LoadSum* force;       // the net loads of the force loop (ForceBlocks)
+  const LoadSum* torque;
 };
 
-// Particles [first, last): held ones stop, the others move (and are wrapped into the period);
-// the force loop's sums of all of them are zeroed for the next step. Returns the last particle
+// Particles [first, last): held ones stop, the others move (and are wrapped into the period). Returns the last particle
 // whose new state is not finite (NaN or Inf in x, v or w makes a coordinate of x + v + w NaN or
 // Inf; so does a sum beyond 1e308: a state as broken), or -1.
 long move_particles(const MotionArrays& a, const MotionConstants& c, long first, long last);

@@ -13,7 +13,7 @@ using lanes::Lanes4;
 using lanes::Mask4;
 using lanes::Triple;
 using V3 = Triple<Lanes4>;
-#define AVX2 [[gnu::target("avx2")]] inline
+#define AVX2 [[gnu::target("avx2"), gnu::always_inline]] inline
 
 AVX2 Lanes4 gather(const double* base, __m128i index) { return simd::gather(base, index); }
 AVX2 V3 load_four(const Vec3* base, const int (&slot)[4]) {
@@ -56,47 +56,28 @@ AVX2 void per_lane(const V3& a, __m256d (&out)[4]) {
   out[3] = _mm256_permute2f128_pd(xy_13, z_13, 0x31);
 }
 
-// s += a and s -= a on a padded load (its fourth double is never read).
-AVX2 void add_to(LoadSum& s, __m256d a) { _mm256_store_pd(s.v.data(), _mm256_add_pd(_mm256_load_pd(s.v.data()), a)); }
-AVX2 void take_from(LoadSum& s, __m256d a) { _mm256_store_pd(s.v.data(), _mm256_sub_pd(_mm256_load_pd(s.v.data()), a)); }
-
-// What the first `count` of four contacts (k, between slots i and j) leave, where all are summed
-// here and only loads are kept: keep_pair_result's operations lane by lane, each vector added with
-// one load, add and store (sim/load_sum.hpp). The spring with a masked store: its three doubles,
-// nothing written past it.
-AVX2 void keep_loads(const PairLawArrays& a, const int (&k)[4], const int (&i)[4], const int (&j)[4], int count,
-                     const V3& spring, const V3& on_i, const V3& torque_i, const V3& torque_j) {
-  __m256d s[4], f[4], t_i[4], t_j[4];
-  per_lane(spring, s), per_lane(on_i, f), per_lane(torque_i, t_i), per_lane(torque_j, t_j);
+// What the first `count` of four contacts (k) leave: keep_pair_result's, lane by lane; each vector
+// written with one masked store of its three doubles (nothing written past it).
+AVX2 void keep_results(const PairLawArrays& a, const int (&k)[4], int count, const V3& spring, const V3& n, const V3& on_i,
+                       const V3& torque_per_radius) {
+  __m256d s[4], f[4], t[4], nl[4];
+  per_lane(spring, s), per_lane(on_i, f), per_lane(torque_per_radius, t);
+  if (a.keep_normals) per_lane(n, nl);
   const __m256i xyz = _mm256_setr_epi64x(-1, -1, -1, 0);
   for (int l = 0; l < count; ++l) {
     _mm256_maskstore_pd(a.spring[k[l]].data(), xyz, s[l]);
-    add_to(a.force[i[l]], f[l]);  // eq. 2.31-2.32
-    take_from(a.force[j[l]], f[l]);
-    add_to(a.torque[i[l]], t_i[l]);  // eq. 2.33-2.34: a n x f_t for i and j alike
-    add_to(a.torque[j[l]], t_j[l]);
-  }
-}
-// The same by keep_pair_result itself, from lane arrays: any contact.
-AVX2 void keep_one_by_one(const PairLawArrays& a, const int (&k)[4], const int (&i)[4], const int (&j)[4], int count,
-                          const V3& spring, const V3& n, const V3& on_i, const V3& torque_per_radius, int reach_end) {
-  const Lanes nx = lanes_of(n.x), ny = lanes_of(n.y), nz = lanes_of(n.z), fx = lanes_of(on_i.x), fy = lanes_of(on_i.y),
-              fz = lanes_of(on_i.z);
-  const Lanes mx = lanes_of(torque_per_radius.x), my = lanes_of(torque_per_radius.y), mz = lanes_of(torque_per_radius.z);
-  const Lanes sx = lanes_of(spring.x), sy = lanes_of(spring.y), sz = lanes_of(spring.z);
-  for (int l = 0; l < count; ++l) {
-    a.spring[k[l]] = Vec3(sx.l[l], sy.l[l], sz.l[l]);
-    keep_pair_result(a, k[l], i[l], j[l], Vec3(nx.l[l], ny.l[l], nz.l[l]), Vec3(fx.l[l], fy.l[l], fz.l[l]),
-                     Vec3(mx.l[l], my.l[l], mz.l[l]), reach_end);
+    _mm256_maskstore_pd(a.sum[k[l]].force.data(), xyz, f[l]);
+    _mm256_maskstore_pd(a.sum[k[l]].torque_per_radius.data(), xyz, t[l]);
+    if (a.keep_normals) _mm256_maskstore_pd(a.normal[k[l]].data(), xyz, nl[l]);
   }
 }
 
 // The kinematics of force_loop.cpp's plain pass 2 and the law of contact/contact_law.hpp with
 // CundallNormal, four contacts at a time (L = Lanes4): the same operations in the same order.
-// flatten: the law and the lane operations are inlined here, where AVX2 is allowed.
+// The law and the lane operations are always inlined here, where AVX2 is allowed.
 template <bool Fixed, bool Bonds>
-[[gnu::target("avx2"), gnu::flatten]] double cundall_law_avx2(const PairLawArrays a, const MaterialTable& materials, double dt,
-                                                              const FoundInChunk found, int m, int reach_end) {
+[[gnu::target("avx2")]] double cundall_law_avx2(const PairLawArrays a, const MaterialTable& materials, double dt,
+                                                              const FoundInChunk found, int m) {
   if (m == 0) return 0;
   // Lanes past the last contact repeat it: computed, never kept.
   for (int q = m; q < m + 3; ++q)
@@ -148,18 +129,13 @@ template <bool Fixed, bool Bonds>
       law = LawParams(pp);
     }
     // Without bonds (Bonds false: no contact of the scene holds one) every lane's flag is false.
-    Mask4 bonded = Bonds ? lanes::mask4(a.bonded[kl[0]], a.bonded[kl[1]], a.bonded[kl[2]], a.bonded[kl[3]]) : Mask4{_mm256_setzero_pd()};
+    Mask4 bonded = Bonds ? lanes::mask4(a.bonded[kl[0]], a.bonded[kl[1]], a.bonded[kl[2]], a.bonded[kl[3]]) : Mask4{};
     V3 spring = in_tangent_plane(load_four(a.spring, kl), c.n);
     const LaneForce<Lanes4> f = evaluate_in_plane<CundallNormal>(law, c, dt, spring, bonded);  // Cundall bonds never break
     const V3 torque_per_radius = cross(c.n, f.tangential);
 
-    // Kept contact by contact, in order.
     const int count = std::min(4, m - e);
-    const __m128i larger = _mm_max_epi32(i, j);
-    if (!a.keep_results && _mm_movemask_epi8(_mm_cmplt_epi32(larger, _mm_set1_epi32(reach_end))) == 0xffff)
-      keep_loads(a, kl, il, jl, count, spring, f.on_i, ri * torque_per_radius, rj * torque_per_radius);
-    else
-      keep_one_by_one(a, kl, il, jl, count, spring, c.n, f.on_i, torque_per_radius, reach_end);
+    keep_results(a, kl, count, spring, c.n, f.on_i, torque_per_radius);
     // relative_overlap_if_larger's test on every lane with the group's first `worst`: where no lane
     // passes, none can with the larger values the loop below may reach (almost every group).
     const __m256d bar = (_mm256_set1_pd(worst) * _mm256_min_pd(ri.v, rj.v)) * _mm256_set1_pd(1 - 1e-9);
@@ -178,17 +154,17 @@ template <bool Fixed, bool Bonds>
 
 template <bool Fixed>
 double cundall_pair_law_simd(const PairLawArrays a, const MaterialTable& materials, double dt, const FoundInChunk found, int m,
-                             int reach_end, bool any_bonds) {
+                             bool any_bonds) {
 #ifdef DEM_SIMD_LOOPS
-  return any_bonds ? cundall_law_avx2<Fixed, true>(a, materials, dt, found, m, reach_end)
-                   : cundall_law_avx2<Fixed, false>(a, materials, dt, found, m, reach_end);
+  return any_bonds ? cundall_law_avx2<Fixed, true>(a, materials, dt, found, m)
+                   : cundall_law_avx2<Fixed, false>(a, materials, dt, found, m);
 #else
-  (void)a, (void)materials, (void)dt, (void)found, (void)m, (void)reach_end, (void)any_bonds;
+  (void)a, (void)materials, (void)dt, (void)found, (void)m, (void)any_bonds;
   return 0;  // never called: simd_loops_on() is false
 #endif
 }
 
-template double cundall_pair_law_simd<false>(PairLawArrays, const MaterialTable&, double, FoundInChunk, int, int, bool);
-template double cundall_pair_law_simd<true>(PairLawArrays, const MaterialTable&, double, FoundInChunk, int, int, bool);
+template double cundall_pair_law_simd<false>(PairLawArrays, const MaterialTable&, double, FoundInChunk, int, bool);
+template double cundall_pair_law_simd<true>(PairLawArrays, const MaterialTable&, double, FoundInChunk, int, bool);
 
 }  // namespace dem

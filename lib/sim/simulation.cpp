@@ -14,6 +14,7 @@
 
 #include "sim/force_loop.hpp"
 #include "sim/motion.hpp"
+#include "simd/simd.hpp"
 #include "core/error.hpp"
 
 namespace dem {
@@ -34,19 +35,12 @@ void Simulation::compute_forces() {
   const bool any_fixed = particles.any_fixed();
   const ForceLoopInput in{particles, materials, walls, wall_geometry_, wall_runs_, wall_run_order_, wall_block_first_, periodic,
                           any_fixed, has_bonds_, dt, params.keep_pair_results};
-  const long reach = load_reach();
-  if (indexed_block_ != params.load_block || indexed_reach_ != reach) index_contacts_per_particle();
-  if (block_force_.size() != particles.size()) {
-    block_force_.resize(particles.size());
-    block_torque_.resize(particles.size());
-    loads_zeroed_ = false;
-  }
-  // The last integration zeroed the loads as it read them (saves the force loop a pass over
-  // 64 bytes per particle); any other way here (the first step, a failed step, a new particle
-  // count) the force loop zeroes them.
-  BlockLoads loads{params.load_block, reach, block_first_, force_times_, block_done_, ++force_epoch_,
-                   block_force_, block_torque_, loads_zeroed_};
-  loads_zeroed_ = false;
+  if (indexed_block_ != params.load_block) index_contacts_per_particle();
+  block_force_.resize(particles.size());
+  block_torque_.resize(particles.size());
+  const BodyForces body{params.gravity};
+  ForceBlocks loads{params.load_block, block_first_, block_needs_, needed_from_, by_key_start_, by_key_, force_times_,
+                    block_done_,       ++force_epoch_, body,       simd_loops_on(), block_force_, block_torque_};
   const double worst_overlap = compute_contact_forces(in, choose_force_variant(*this), pairs_, walls_, loads);
   pair_results_kept_ = params.keep_pair_results;
   contacts_modified();
@@ -248,24 +242,18 @@ KeyOrder& Simulation::pair_key_order() const {
   return pair_by_key_;
 }
 
-long Simulation::load_reach() const {
-  if (params.load_block < 1) throw std::invalid_argument("SimParams::load_block must be at least 1");
-  if (params.load_reach < 0) throw std::invalid_argument("SimParams::load_reach must be at least 0 (0: automatic)");
-  return params.load_reach > 0 ? params.load_reach : automatic_load_reach(static_cast<long>(particles.size()), params.load_block);
-}
-
 void Simulation::index_contacts_per_particle() {
+  if (params.load_block < 1) throw std::invalid_argument("SimParams::load_block must be at least 1");
   const std::size_t n = particles.size();
   const long npc = static_cast<long>(pairs_.size());
   const long nwc = static_cast<long>(walls_.size());
   // Load blocks: candidates are stored grouped by their smaller slot, in slot order
   // (place_by_storage), so each block's candidates form one run.
-  const long block = params.load_block, reach = load_reach();
+  const long block = params.load_block;
   const long blocks = (static_cast<long>(n) + block - 1) / block;
   auto lower_slot = [&](long k) { return std::min(pairs_.slot_i[k], pairs_.slot_j[k]); };
   // Each block's first candidate by bisection; the order is checked below (each candidate lies in
-  // the block whose run holds it, the runs in order). (Serial, this function was 1 % of the settle
-  // of 10^4's time on two threads, which rebuilds its list every 40 steps.)
+  // the block whose run holds it, the runs in order).
   block_first_.resize(blocks + 1);
   for (long b = 0; b <= blocks; ++b) {
     long lo = 0, hi = npc;  // the first candidate whose smaller slot lies in block b or later
@@ -276,54 +264,45 @@ void Simulation::index_contacts_per_particle() {
     }
     block_first_[b] = lo;
   }
-  indexed_block_ = block, indexed_reach_ = reach;
-  // The force loop adds the contacts within a block or between blocks at most `reach` apart; the
-  // rest (blocks farther apart) are summed in integrate(). A candidate of block b (its smaller
-  // slot there) is one when its larger slot lies in block b + reach + 1 or later (a comparison:
-  // two divisions per candidate were most of this function's time). They are found in parallel,
-  // each thread's blocks in order, and kept in candidate order.
-  std::vector<std::vector<int>> far_parts(omp_get_max_threads());  // per thread
+  indexed_block_ = block;
   bool ordered = block_first_[blocks] == npc;
   for (long b = 0; b < blocks; ++b) ordered = ordered && block_first_[b] <= block_first_[b + 1];
-#pragma omp parallel reduction(&& : ordered)
-  {
-    // Filled here and then swapped in: threads appending to neighbouring vectors would pass the
-    // cache line holding their sizes back and forth.
-    std::vector<int> mine;
-#pragma omp for schedule(static)
-    for (long b = 0; b < blocks; ++b) {
-      const long beyond = (b + reach + 1) * block;
-      for (long k = block_first_[b]; k < block_first_[b + 1]; ++k) {
-        ordered = ordered && lower_slot(k) >= b * block && lower_slot(k) < (b + 1) * block;
-        if (std::max(pairs_.slot_i[k], pairs_.slot_j[k]) >= beyond) mine.push_back(static_cast<int>(k));
-      }
-    }
-    far_parts[omp_get_thread_num()].swap(mine);
-  }
+#pragma omp parallel for schedule(static) reduction(&& : ordered)
+  for (long b = 0; b < blocks; ++b)
+    for (long k = block_first_[b]; k < block_first_[b + 1]; ++k)
+      ordered = ordered && lower_slot(k) >= b * block && lower_slot(k) < (b + 1) * block;
   if (!ordered) throw std::logic_error("pair candidates not stored along the slots");
-  const auto for_each_apart = [&](auto&& f) {
-    for (const std::vector<int>& part : far_parts)  // a static schedule: the threads' blocks in order
-      for (int k : part) f(k);
-  };
-  // Per-particle lists of those pair candidates (blocks apart), by key, so that their sums in
-  // integrate() give the same bits for any thread count and wherever the candidates are stored
-  // (the force loop adds the rest). Entry codes: 2k = pair k seen from i, 2k+1 = seen from j.
-  csr_start_.assign(n + 1, 0);
-  for_each_apart([&](long k) { ++csr_start_[pairs_.slot_i[k] + 1], ++csr_start_[pairs_.slot_j[k] + 1]; });
-  for (std::size_t k = 0; k < n; ++k) csr_start_[k + 1] += csr_start_[k];
-  if (static_cast<std::size_t>(csr_start_[n]) > csr_entry_.capacity()) csr_entry_.reserve(csr_start_[n]);  // no doubling
-  csr_entry_.resize(csr_start_[n]);
-  csr_fill_.assign(csr_start_.begin(), csr_start_.end() - 1);
-  for_each_apart([&](long k) {
-    csr_entry_[csr_fill_[pairs_.slot_i[k]]++] = static_cast<int>(2 * k);
-    csr_entry_[csr_fill_[pairs_.slot_j[k]]++] = static_cast<int>(2 * k + 1);
-  });
+  // Per-particle lists of the pair candidates in the order of their keys, by which the force loop
+  // sums each particle's contacts: the same bits for any thread count and any storage order
+  // (ForceBlocks). Entry codes: 2k = pair k seen from i, 2k+1 = seen from j.
+  by_key_start_.assign(n + 1, 0);
+  for (long k = 0; k < npc; ++k) ++by_key_start_[pairs_.slot_i[k] + 1], ++by_key_start_[pairs_.slot_j[k] + 1];
+  for (std::size_t k = 0; k < n; ++k) by_key_start_[k + 1] += by_key_start_[k];
+  if (static_cast<std::size_t>(by_key_start_[n]) > by_key_.capacity()) by_key_.reserve(by_key_start_[n]);  // no doubling
+  by_key_.resize(by_key_start_[n]);
+  by_key_fill_.assign(by_key_start_.begin(), by_key_start_.end() - 1);
+  for (long k = 0; k < npc; ++k) {
+    by_key_[by_key_fill_[pairs_.slot_i[k]]++] = static_cast<int>(2 * k);
+    by_key_[by_key_fill_[pairs_.slot_j[k]]++] = static_cast<int>(2 * k + 1);
+  }
   const long slots = static_cast<long>(n);
 #pragma omp parallel for schedule(static, 1024)
   for (long s = 0; s < slots; ++s)
-    std::sort(csr_entry_.begin() + csr_start_[s], csr_entry_.begin() + csr_start_[s + 1], [&](int a, int b) {
+    std::sort(by_key_.begin() + by_key_start_[s], by_key_.begin() + by_key_start_[s + 1], [&](int a, int b) {
       return key_before(pairs_, a >> 1, b >> 1);
     });
+  // Per block, the first block whose group holds a candidate of its particles (the group of a
+  // candidate is the block of its smaller slot: this block or an earlier one).
+  block_needs_.resize(blocks);
+#pragma omp parallel for schedule(static)
+  for (long b = 0; b < blocks; ++b) {
+    long needs = b;
+    for (long e = by_key_start_[b * block]; e < by_key_start_[std::min(slots, (b + 1) * block)]; ++e)
+      needs = std::min(needs, static_cast<long>(lower_slot(by_key_[e] >> 1)) / block);
+    block_needs_[b] = needs;
+  }
+  needed_from_.resize(blocks);
+  for (long b = blocks - 1, least = blocks; b >= 0; --b) needed_from_[b] = least = std::min(least, block_needs_[b]);
   // Wall candidates are sorted by particle id: each particle's form one run, taken together by the
   // wall force loop (where mesh elements meet, one touch must count once).
   wall_runs_.clear();
@@ -346,7 +325,7 @@ void Simulation::index_contacts_per_particle() {
 void Simulation::integrate(bool any_fixed) {
   // eq. 2.38-2.47: v^{n+1/2} = (a v^{n-1/2} + acc dt) b, a = 1 - alpha dt/2, b = 1/(1 + alpha dt/2).
   const MotionConstants c{1 - params.alpha_r * dt / 2, 1 / (1 + params.alpha_r * dt / 2), 1 - params.alpha_theta * dt / 2,
-                          1 / (1 + params.alpha_theta * dt / 2), dt, params.gravity, periodic};
+                          1 / (1 + params.alpha_theta * dt / 2), dt, periodic};
   Particles& p = particles;
   const MotionArrays a{.x = p.x.data(),
                        .v = p.v.data(),
@@ -356,15 +335,9 @@ void Simulation::integrate(bool any_fixed) {
                        .radius = p.radius.data(),
                        .fixed = any_fixed ? p.fixed.data() : nullptr,
                        .force = block_force_.data(),
-                       .torque = block_torque_.data(),
-                       .csr_start = csr_start_.data(),
-                       .csr_entry = csr_entry_.data(),
-                       .active = pairs_.active.data(),
-                       .sum = pairs_.sum.data()};
+                       .torque = block_torque_.data()};
   const long n = static_cast<long>(p.size());
   long bad = -1;
-  // One pass: each particle's loads are summed and used at once (no per-particle force arrays to
-  // write and read back: this loop is bound by memory traffic at 1e5 particles and more).
   // Each thread takes a contiguous run of blocks of particles (load_block slots each) sized by
   // their times at the last step (sim/block_times.hpp): close to its run in the force loop, so its
   // particles' loads and positions are in its core's cache. (Split evenly, a thread read half its
@@ -386,7 +359,6 @@ void Simulation::integrate(bool any_fixed) {
       integrate_times_.record(b, tb);
     }
   }
-  loads_zeroed_ = true;  // move_particles cleared every particle's
   if (bad >= 0) {
     const Particles& p = particles;
     std::ostringstream m;

@@ -30,26 +30,18 @@ struct SimParams {
   // order of a grid of cells, so that neighbours sit close in memory. 0 = never. The pair lists
   // follow the storage order, so both the particle and the contact loops become local: a
   // 100,000-sphere gen-primary settle to t = 0.4 s took 134 s sorted every 1,000 steps against 204 s
-  // never sorted (bench/results/locality.md). The storage order sets the order in which each
-  // particle's contact forces are added (load_block), so another order changes the last bits
-  // (never the thread count, nor a restart: checkpoints keep the storage order).
+  // never sorted (bench/results/locality.md). Speed only: each particle's loads are summed in
+  // an order of its own (its contacts' keys; sim/force_loop.hpp ForceBlocks), so no storage order
+  // changes a bit.
   long sort_every = 1000;
   long sort_min_particles = 10000;
-  // Blocks of the force sums (sim/force_loop.hpp BlockLoads): contacts between two particles whose
-  // storage slots lie in one block of load_block slots or in blocks at most load_reach apart are
-  // added to both particles by the force loop, the others afterwards. Speed only, within the last
-  // bits. Blocks are the unit of work of a thread, so they are small (fine shares); the reach
-  // should span a layer of the sample (its vertical contacts); 0 = chosen from the particle count
-  // (automatic_load_reach, sim/force_loop.hpp).
+  // Blocks of storage slots (ForceBlocks): the unit of work a thread takes in the force loop and
+  // the integration, small for fine shares. Speed only.
   long load_block = 256;
-  long load_reach = 0;
-  // Whether each step keeps every pair contact's normal and force (pair_contacts()'s normal, sum,
-  // force(k), tangential(k); read by post/contact_forces.hpp). Off, a step writes them only where
-  // integrate() reads them (contacts between blocks farther apart than load_reach) and
-  // contact_forces() refuses the step: a run whose outputs compute the forces on a copy
-  // (contact_forces_at_state) or read only keys, springs and bonds (checkpoints) saves the stores:
-  // the chute's force loop took 7-12 % less time (one and two threads), a settled bed's 4 %.
-  // Never changes a result.
+  // Whether each step keeps every pair contact's normal (pair_contacts()'s normal and
+  // tangential(k); read by post/contact_forces.hpp). Off, contact_forces() refuses the step: a
+  // run whose outputs compute the forces on a copy (contact_forces_at_state) or read only keys,
+  // springs and bonds (checkpoints) saves the stores. Never changes a result.
   bool keep_pair_results = true;
 };
 
@@ -161,18 +153,16 @@ class Simulation {
   void contacts_modified();  // the views must be compacted again
   std::vector<WallGeometry> wall_geometry_;
   bool walls_move_ = false;  // some element of wall_geometry_ has a velocity or a spin
-  // Per-particle lists of the pair candidates between blocks farther apart than load_reach, which
-  // integrate() sums, in a fixed order; rebuilt with the neighbour list.
-  std::vector<int> csr_start_, csr_entry_, csr_fill_;
+  // Per slot, its pair candidates in key order (ForceBlocks::by_key); rebuilt with the neighbour list.
+  std::vector<int> by_key_start_, by_key_, by_key_fill_;
   std::vector<long> block_first_;  // first pair candidate of each load block, then the end
-  long indexed_block_ = 0, indexed_reach_ = -1;  // load_block and the reach of block_first_ and the
-                                                // per-particle lists
-  long load_reach() const;  // params.load_reach, or where 0 the automatic one
+  std::vector<long> block_needs_;  // per load block, the first block holding a candidate of its particles
+  std::vector<long> needed_from_;  // per load block, the least block_needs_ of it and those after
+  long indexed_block_ = 0;         // load_block of block_first_
   BlockTimes force_times_, integrate_times_;  // per load block, its time in each loop at the last step
-  std::vector<long> block_done_;  // per load block, the epoch of the force loop that last summed it
-  long force_epoch_ = 0;          // force loops run (BlockLoads::epoch)
-  std::vector<LoadSum> block_force_, block_torque_;  // per slot, the sums of the force loop (BlockLoads)
-  bool loads_zeroed_ = false;  // integrate() cleared block_force_ and block_torque_ as it read them
+  std::vector<long> block_done_;  // per load block, the epoch of the force loop that last computed it
+  long force_epoch_ = 0;          // force loops run (ForceBlocks::epoch)
+  std::vector<LoadSum> block_force_, block_torque_;  // per slot, its net load this step (ForceBlocks)
   std::vector<int> wall_runs_;  // first wall candidate of each particle, then the end
   std::vector<int> wall_run_order_, wall_block_first_;  // ForceLoopInput's
 };
