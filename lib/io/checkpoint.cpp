@@ -359,7 +359,8 @@ void write_all(Writer& w, const Simulation& sim, const CheckpointMeta& meta) {
   w.doubles("/run/frame_times", meta.run.frame_times, "s");
   w.doubles("/run/servo_integral", meta.run.servo_integral, "m/s");
 
-  const Particles& p = sim.particles;
+  Particles p = sim.particles;  // in id order (Particles::slots_by_id)
+  p.reorder(p.slots_by_id());
   w.group("/particles");
   w.int64s("/particles/id", p.id);
   w.vec3s("/particles/position", p.x, "m");

@@ -19,9 +19,13 @@ void FrameWriter::write(const Simulation& sim, const std::vector<double>& times)
   const std::size_t k = times.size() - 1;
   std::vector<std::string> names;
   for (const Material& m : sim.materials.materials()) names.push_back(m.name);
-  std::vector<Vec3> disp(sim.particles.size());
-  for (std::size_t i = 0; i < disp.size(); ++i) disp[i] = sim.unwrapped_position(i) - sim.particles.x_ref[i];
-  write_particles_vtu(dir_ + "/" + frame_name(stage_, "particles", k, "vtu"), sim.particles, names, &disp);
+  // In id order (Particles::slots_by_id): a frame does not depend on the storage order.
+  const std::vector<std::size_t> by_id = sim.particles.slots_by_id();
+  Particles p = sim.particles;
+  p.reorder(by_id);
+  std::vector<Vec3> disp(by_id.size());
+  for (std::size_t i = 0; i < disp.size(); ++i) disp[i] = sim.unwrapped_position(by_id[i]) - p.x_ref[i];
+  write_particles_vtu(dir_ + "/" + frame_name(stage_, "particles", k, "vtu"), p, names, &disp);
   write_walls_vtp(dir_ + "/" + frame_name(stage_, "walls", k, "vtp"), sim.walls, sim.time);
   std::vector<PvdEntry> particles, walls;
   for (std::size_t f = 0; f < times.size(); ++f) {

@@ -20,6 +20,13 @@ void gather(std::vector<T>& a, const std::vector<std::size_t>& order) {
 }
 }  // namespace
 
+std::vector<std::size_t> Particles::slots_by_id() const {
+  std::vector<std::size_t> order(id.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return id[a] < id[b]; });
+  return order;
+}
+
 void Particles::reorder(const std::vector<std::size_t>& order) {
   gather(id, order);
   gather(x, order);

@@ -57,6 +57,9 @@ struct Particles {
   void keep_only(const std::vector<bool>& keep);
   // Storage slot k takes the particle of slot order[k] (order: a permutation of the slots).
   void reorder(const std::vector<std::size_t>& order);
+  // The storage slots in the order of the particles' ids: files list particles so, so that no
+  // storage order shows in an output (it changes no result either).
+  std::vector<std::size_t> slots_by_id() const;
 
   Index max_id() const;
 };
