@@ -111,7 +111,7 @@ void variants() {
                         Case{"mendes, every contact bonded", NormalLaw::Mendes, false, true}}) {
     double ns[2];
     std::size_t contacts = 0;
-    const char* variant = "";
+    std::string variant;
     for (int t = 0; t < 2; ++t) {
       Simulation sim = base;
       Material m = bead(0.5);
@@ -137,7 +137,7 @@ void variants() {
       contacts = sim.pair_contacts().size() + sim.wall_contacts().size();
     }
     if (reference == 0) reference = ns[0];
-    std::printf("| %s | %s | %zu | %.0f | %.0f | %.2f |\n", c.name, variant, contacts, ns[0], ns[1], ns[0] / reference);
+    std::printf("| %s | %s | %zu | %.0f | %.0f | %.2f |\n", c.name, variant.c_str(), contacts, ns[0], ns[1], ns[0] / reference);
     std::fflush(stdout);
   }
 }

@@ -5,7 +5,7 @@
 # that the table does not place. Usage: check_layers.sh [LIB_DIR]
 set -eu
 lib=${1:-$(dirname "$0")/../lib}
-rank="core=0 simd=1 state=2 contact=3 walls=4 search=5 sim=6 scene=7
+rank="core=0 simd=1 contact=2 state=3 walls=4 search=5 sim=6 scene=7
       generation=8 post=8 control=8 io=9 run=10"
 
 status=0

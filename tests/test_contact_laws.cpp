@@ -10,12 +10,16 @@
 #include <cstdint>
 #include <map>
 #include <numbers>
+#include <optional>
 #include <ostream>
 #include <random>
+#include <set>
+#include <string>
 #include <utility>
 #include <vector>
 
 #include "contact/contact_law.hpp"
+#include "contact/normal_law_table.hpp"
 #include "core/error.hpp"
 #include "sim/force_loop.hpp"
 #include "sim/simulation.hpp"
@@ -47,6 +51,47 @@ Material bond_material(NormalLaw law, double epsilon = 1e-4) {
 }
 
 PairParams pair_params(const Material& m) { return MaterialTable({m}, {}).pair(0, 0); }
+
+// ---------------------------------------------------------------------------------------------
+// The table of normal laws (contact/normal_law_table.hpp): every code has a keyword that names it
+// back, and what each law owns agrees with its own force, checked numerically (a bonded pair of
+// each law with F = 1 N, kn = 1e5 N/m): the stiffness for eq. 2.48 is at least the largest slope
+// |dF/du| over compression and tension up to the break (central differences, 1e-6 relative), and
+// the stored energy it reports is at least the work its force stores from u = 0 (midpoint rule,
+// 20,000 steps: 1e-6 relative), equal to it for the linear compression (½ kn u²).
+TEST(NormalLawTable, EveryLawOwnsItsKeywordStiffnessAndEnergy) {
+  std::set<std::string> seen;
+  for (int c = 0; c < kNormalLaws; ++c) {
+    const NormalLaw law = static_cast<NormalLaw>(c);
+    const std::string name(normal_law_name(law));
+    EXPECT_TRUE(seen.insert(name).second) << name << " twice";
+    ASSERT_EQ(normal_law_named(name), law) << name;
+    const PairParams p = pair_params(bond_material(law));
+    auto force = [&](double u) {
+      bool bonded = true;
+      return MixedNormal::elastic(p, u, bonded);
+    };
+    const double stiffness = with_normal_law(law, [&](auto l) { return l.stiffness(p); });
+    const double reach = std::max(p.break_separation, kStrength / kKn);  // tension up to the break
+    double steepest = 0;
+    for (int k = -1000; k <= 1000; ++k) {
+      const double u = k * 1e-3 * reach, h = 1e-6 * reach;
+      if (u - h < -p.break_separation) continue;
+      steepest = std::max(steepest, std::abs(force(u + h) - force(u - h)) / (2 * h));
+    }
+    EXPECT_GE(stiffness * (1 + 1e-6), steepest) << name;
+    for (const double end : {2 * reach, -0.999 * p.break_separation}) {
+      if (end == 0) continue;
+      double work = 0;
+      const int n = 20000;
+      for (int k = 0; k < n; ++k) work += force((k + 0.5) * end / n) * end / n;  // ∫ F du from 0
+      const double stored = with_normal_law(law, [&](auto l) { return l.stored_energy(p, end, true); });
+      EXPECT_GE(stored * (1 + 1e-6), std::abs(work)) << name << " at u = " << end;
+      if (end > 0) EXPECT_NEAR(stored, work, 1e-6 * work) << name << ": compression is linear";
+    }
+  }
+  EXPECT_EQ(normal_law_named("hooke"), std::nullopt);
+}
 
 // ---------------------------------------------------------------------------------------------
 // The mendes law written out from SPEC §6 (eq. 2.22-2.25 with SPEC's signs).
@@ -369,7 +414,7 @@ TEST(LiuBond, UnbondedContactCarriesNoTension) {
   sim.particles.add(3, Vec3(2 * kRadius - 1e-7, 1, 0), kRadius, kDensity, 0);
   place_on_axis(sim, 1.0, 0);  // pair (0, 1) far apart while bonding: only (2, 3) gets a bond
   ASSERT_EQ(sim.bond_present_contacts(false), 1u);
-  ASSERT_EQ(choose_force_variant(sim), ForceVariant::Liu);
+  ASSERT_EQ(choose_force_variant(sim), NormalLaw::Liu);
   const double u0 = 0.1 * kStrength / kKn, ds = kPullRate * sim.dt;
   double max_tension = -1e300;
   int steps_in_contact = 0;

@@ -1,32 +1,45 @@
 #pragma once
-// Elastic normal laws f_el(u_n) of SPEC §6, as small stateless types. u is the overlap (> 0 in
-// compression); the result is positive when repulsive. `bonded` is the contact's bond flag Φ; a
-// law clears it when the bond fails in this step (irreversible, SPEC §6 Decision).
+// Elastic normal laws f_el(u_n) of SPEC §6, as small stateless types, each owning everything about
+// itself: its scene keyword, its force, the elastic energy it stores (for the energy check,
+// sim/energy_audit.hpp), its stiffness for the critical time step (eq. 2.48) and the constants it
+// derives per material pair. u is the overlap (> 0 in compression); the force is positive when
+// repulsive. `bonded` is the contact's bond flag Φ; a law clears it when the bond fails in this
+// step (irreversible, SPEC §6 Decision).
 //
-// Written over a lane type (simd/lanes.hpp) where the law has a four-wide version (four_wide:
-// CundallNormal); the others run one contact at a time (L = double, P = PairParams).
+// A law written over a lane type (simd/lanes.hpp) also runs four contacts at a time (four_wide:
+// CundallNormal); the others one at a time (L = double, P = PairParams).
 //
-// How to add a law: write a struct with a static `elastic`, add its enum value in
-// state/materials.hpp, its keyword in io/scene_parser.cpp, and a case in sim/force_loop.cpp.
+// How to add a law: a struct here with the members below, its entry in normal_law_table.hpp (one
+// enum value in contact/pair_params.hpp, one case), its tests, and its keyword in docs/scene.md.
+#include <algorithm>
 #include <cmath>
+#include <string_view>
 
+#include "contact/pair_params.hpp"
 #include "simd/lanes.hpp"
-#include "state/materials.hpp"
 
 namespace dem {
 
+// The energy bound of the linear compression every law shares: ½ kn u² [J].
+inline double linear_compression_energy(const PairParams& p, double u) { return u > 0 ? 0.5 * p.kn * u * u : 0.0; }
+
 // Cundall & Strack: linear in compression, no tension.
 struct CundallNormal {
+  static constexpr std::string_view keyword = "cundall";
   static constexpr bool four_wide = true;
   template <class P, class L, class M>
   [[gnu::always_inline]] static L elastic(const P& p, const L& u, M& /*bonded*/) {
     return lanes::only_where(lanes::less(L(0.0), u), p.kn * u);
   }
+  static double stored_energy(const PairParams& p, double u, bool /*bonded*/) { return linear_compression_energy(p, u); }
+  static double stiffness(const PairParams& p) { return p.kn; }
+  static void derive(PairParams& p, double /*epsilon*/) { p.break_separation = 0; }
 };
 
 // Liu (eq. 2.21): linear in compression and, while bonded, in tension up to the strength F; the
 // bond breaks abruptly when the tension would exceed F.
 struct LiuNormal {
+  static constexpr std::string_view keyword = "liu";
   static constexpr bool four_wide = false;
   static double elastic(const PairParams& p, double u, bool& bonded) {
     if (u >= 0) return p.kn * u;
@@ -37,12 +50,19 @@ struct LiuNormal {
     }
     return p.kn * u;
   }
+  // A bonded pair held in tension s stores at most F s (the attraction never exceeds F).
+  static double stored_energy(const PairParams& p, double u, bool bonded) {
+    return u >= 0 ? linear_compression_energy(p, u) : bonded ? p.tensile_strength * -u : 0.0;
+  }
+  static double stiffness(const PairParams& p) { return p.kn; }
+  static void derive(PairParams& p, double /*epsilon*/) { p.break_separation = p.tensile_strength / p.kn; }  // eq. 2.21
 };
 
 // Mendes (eq. 2.22-2.25, signs as SPEC §6): linear in compression; while bonded the attraction is
 // T(s) = kn [D (1 - exp(-A s)) - s], s = -u, rising to F at s* = D ln(L) / L and softening to zero
 // at s0, where the bond breaks.
 struct MendesNormal {
+  static constexpr std::string_view keyword = "mendes";
   static constexpr bool four_wide = false;
   static double elastic(const PairParams& p, double u, bool& bonded) {
     if (u >= 0) return p.kn * u;
@@ -54,19 +74,14 @@ struct MendesNormal {
     }
     return -p.kn * (p.mendes_D * (1 - std::exp(-p.mendes_A * s)) - s);
   }
-};
-
-// A scene whose material pairs use different laws: choose per contact.
-struct MixedNormal {
-  static constexpr bool four_wide = false;
-  static double elastic(const PairParams& p, double u, bool& bonded) {
-    switch (p.law) {
-      case NormalLaw::Liu: return LiuNormal::elastic(p, u, bonded);
-      case NormalLaw::Mendes: return MendesNormal::elastic(p, u, bonded);
-      case NormalLaw::Cundall: break;
-    }
-    return CundallNormal::elastic(p, u, bonded);
+  static double stored_energy(const PairParams& p, double u, bool bonded) { return LiuNormal::stored_energy(p, u, bonded); }
+  // The attraction starts with slope T'(0) = kn (D A - 1) = kn (L - 1), steeper than kn for
+  // eps < 1/e^2 (8.2 kn at eps = 1e-4): eq. 2.48 must see it.
+  static double stiffness(const PairParams& p) {
+    return p.mendes_tension ? std::max(p.kn, p.kn * (p.mendes_D * p.mendes_A - 1)) : p.kn;
   }
+  // The constants D, A, the zero s0 of T and whether there is tension at all (eq. 2.23-2.24).
+  static void derive(PairParams& p, double epsilon);
 };
 
 }  // namespace dem

@@ -11,6 +11,7 @@
 #include <cstring>
 #include <filesystem>
 
+#include "contact/normal_law_table.hpp"
 #include "core/error.hpp"
 #include "core/version.hpp"
 #include "io/file_seal.hpp"
@@ -571,7 +572,7 @@ void read_checkpoint(const std::string& path, Simulation& sim, CheckpointMeta& m
   const std::vector<int> mix = r.int32s("/materials/mixing", 4);
   std::vector<Material> mats(nm);
   for (long k = 0; k < nm; ++k) {
-    if (law[k] < 0 || law[k] > 2) throw IoError(path + ": /materials/law holds an unknown law (damaged file)");
+    if (law[k] < 0 || law[k] >= kNormalLaws) throw IoError(path + ": /materials/law holds an unknown law (damaged file)");
     mats[k] = {names[k], density[k], kn[k], kt[k], phi[k], eta[k], eta_t[k], static_cast<NormalLaw>(law[k]),
                strength[k], cohesion[k], epsilon[k], nva[k] != 0};
   }

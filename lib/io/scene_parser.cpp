@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <toml++/toml.h>
 
+#include "contact/normal_law_table.hpp"
 #include "core/error.hpp"
 #include "io/stl.hpp"
 #include "walls/primitives.hpp"
@@ -20,6 +21,13 @@
 namespace dem {
 
 namespace {
+
+// "a", "b", "c"
+std::string quoted_list(const std::vector<std::string>& names) {
+  std::string list;
+  for (const std::string& a : names) list += (list.empty() ? "" : ", ") + ("\"" + a + "\"");
+  return list;
+}
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
@@ -135,9 +143,7 @@ class TableReader {
     const std::string v = string_of(n ? *n : required(key), key);
     for (const std::string& a : allowed)
       if (a == v) return v;
-    std::string list;
-    for (const std::string& a : allowed) list += (list.empty() ? "" : ", ") + ("\"" + a + "\"");
-    fail_at(n, key, "unknown value: allowed " + list);
+    fail_at(n, key, "unknown value: allowed " + quoted_list(allowed));
   }
   Vec3 vec3_of(const toml::node& n, const std::string& key) const {
     const toml::array* a = n.as_array();
@@ -275,8 +281,7 @@ void read_simulation(TableReader& top, Scene& sc) {
 const std::string kCundall = "cundall";
 
 NormalLaw read_law(TableReader& r, const std::string* def) {
-  const std::string v = r.choice("law", {"cundall", "liu", "mendes"}, def);
-  return v == "liu" ? NormalLaw::Liu : v == "mendes" ? NormalLaw::Mendes : NormalLaw::Cundall;
+  return *normal_law_named(r.choice("law", normal_law_names(), def));  // the table's keywords
 }
 
 // [[pair]] materials = ["a", "b"] with any material contact key: explicit values for that pair.
@@ -325,7 +330,7 @@ void read_pairs(TableReader& top, Scene& sc) {
       if (!given)
         throw InputError(top.file() + ": materials \"" + sc.materials[x].name + "\" and \"" + sc.materials[y].name +
                          "\" use different laws; add a [[pair]] with materials = [\"" + sc.materials[x].name + "\", \"" +
-                         sc.materials[y].name + "\"] and law = \"...\" (allowed \"cundall\", \"liu\", \"mendes\")");
+                         sc.materials[y].name + "\"] and law = \"...\" (allowed " + quoted_list(normal_law_names()) + ")");
     }
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "contact/normal_law_table.hpp"
 #include "sim/force_loop.hpp"
 
 namespace dem {
@@ -31,10 +32,9 @@ MechanicalEnergy mechanical_energy(const Particles& p, const Vec3& gravity, cons
 
 namespace {
 
-// Normal part of the bound for overlap u (> 0 compression) of a pair with constants q.
+// Normal part of the bound for overlap u (> 0 compression) of a pair with constants q: its law's.
 double normal_energy_bound(const PairParams& q, double u, bool bonded) {
-  if (u >= 0) return 0.5 * q.kn * u * u;
-  return bonded ? q.tensile_strength * -u : 0.0;
+  return with_normal_law(q.law, [&](auto law) { return law.stored_energy(q, u, bonded); });
 }
 
 double spring_energy(const PairParams& q, const Vec3& spring) { return q.kt > 0 ? 0.5 * spring.squaredNorm() / q.kt : 0.0; }

@@ -35,9 +35,9 @@ inline double kinetic_energy_of(const Particles& p, std::size_t k, double& rotat
   return 0.5 * p.mass[k] * p.v[k].squaredNorm() + rotational;
 }
 
-// An upper bound on the elastic energy stored in the active contacts [J]: ½ kn u² in compression
-// (every law is linear there), F s for a bonded pair held in tension s (the attraction never
-// exceeds the strength F), ½ |f_s|²/kt in the tangential spring.
+// An upper bound on the elastic energy stored in the active contacts [J]: each normal law's own
+// (contact/normal_laws.hpp: ½ kn u² in compression, F s for a bonded pair held in tension s), and
+// ½ |f_s|²/kt in the tangential spring.
 double stored_energy_bound(const Particles& p, const MaterialTable& materials, const std::vector<Wall>& walls,
                            const std::vector<WallGeometry>& geometry, const PeriodicBox& box, const ContactList& pairs,
                            const ContactList& wall_contacts);

@@ -10,6 +10,7 @@
 #include <type_traits>
 
 #include "contact/contact_law.hpp"
+#include "contact/normal_law_table.hpp"
 #include "sim/find_contacts.hpp"
 #include "sim/pair_law.hpp"
 #include "simd/simd.hpp"
@@ -349,36 +350,16 @@ void select_wall_contacts(const Vec3* to_wall, const std::uint8_t* touching, int
 }
 
 ForceVariant choose_force_variant(const Simulation& sim) {
-  if (!sim.has_bonds()) return ForceVariant::Cundall;
-  const std::optional<NormalLaw> law = sim.materials.common_law();
-  if (!law) return ForceVariant::Mixed;
-  switch (*law) {
-    case NormalLaw::Cundall: return ForceVariant::Cundall;
-    case NormalLaw::Liu: return ForceVariant::Liu;
-    case NormalLaw::Mendes: return ForceVariant::Mendes;
-  }
-  return ForceVariant::Mixed;
+  if (!sim.has_bonds()) return NormalLaw::Cundall;
+  return sim.materials.common_law();
 }
 
-const char* variant_name(ForceVariant v) {
-  switch (v) {
-    case ForceVariant::Cundall: return "cundall";
-    case ForceVariant::Liu: return "liu";
-    case ForceVariant::Mendes: return "mendes";
-    case ForceVariant::Mixed: return "mixed";
-  }
-  return "?";
-}
+std::string variant_name(ForceVariant v) { return v ? std::string(normal_law_name(*v)) : "mixed"; }
 
 double compute_contact_forces(const ForceLoopInput& in, ForceVariant variant, ContactList& pairs, ContactList& walls,
                               ForceBlocks& loads) {
-  switch (variant) {
-    case ForceVariant::Cundall: return all_forces<CundallNormal>(in, pairs, walls, loads);
-    case ForceVariant::Liu: return all_forces<LiuNormal>(in, pairs, walls, loads);
-    case ForceVariant::Mendes: return all_forces<MendesNormal>(in, pairs, walls, loads);
-    case ForceVariant::Mixed: return all_forces<MixedNormal>(in, pairs, walls, loads);
-  }
-  return 0;
+  if (!variant) return all_forces<MixedNormal>(in, pairs, walls, loads);
+  return with_normal_law(*variant, [&](auto law) { return all_forces<decltype(law)>(in, pairs, walls, loads); });
 }
 
 }  // namespace dem

@@ -2,6 +2,8 @@
 // The force loop: forces of every contact this step, one loop per law combination (STYLE 3),
 // chosen once per step outside the loops so that a scene pays only for what it uses.
 #include <cstdint>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "contact/contact_list.hpp"
@@ -62,11 +64,12 @@ struct ForceBlocks {
   std::vector<LoadSum>& torque;     // per slot: the net torque [N m]
 };
 
-// Which instantiation runs: "cundall" (also any law while no contact is bonded: without bonds
-// liu and mendes act exactly as cundall), "liu", "mendes" or "mixed".
-enum class ForceVariant { Cundall, Liu, Mendes, Mixed };
+// Which instantiation of the force loop runs: the law every pair shares (contact/normal_law_table.hpp;
+// also cundall for any law while no contact is bonded: without bonds liu and mendes act exactly as
+// cundall), or none: the law chosen per contact ("mixed").
+using ForceVariant = std::optional<NormalLaw>;
 ForceVariant choose_force_variant(const Simulation& sim);
-const char* variant_name(ForceVariant v);
+std::string variant_name(ForceVariant v);
 
 // x_j - x_i, through the nearest image where boundaries are periodic. The force loop is compiled
 // for both cases, so that a scene without periodic boundaries pays nothing for them.

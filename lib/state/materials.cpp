@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "contact/normal_law_table.hpp"
+
 namespace dem {
 
 double mix(MixRule rule, double a, double b) {
@@ -20,29 +22,6 @@ double damping_ratio(double eta) {
   // eq. 2.29 (Tsuji et al.): realised restitution equals eta for the unclipped linear dashpot.
   const double l = std::log(eta);
   return -l / std::sqrt(std::numbers::pi * std::numbers::pi + l * l);
-}
-
-void derive_mendes(PairParams& p, double epsilon) {
-  // eq. 2.23-2.24 (SPEC §6): L = -ln eps, D = F L / (kn (L - 1 - ln L)), A = L / D. For
-  // eps >= 1/e, L <= 1 and there is no tension (Cundall).
-  const double L = -std::log(epsilon);
-  p.mendes_tension = L > 1 && p.tensile_strength > 0;
-  if (!p.mendes_tension) {
-    p.mendes_D = p.mendes_A = p.break_separation = 0;
-    return;
-  }
-  const double D = p.tensile_strength * L / (p.kn * (L - 1 - std::log(L)));
-  const double A = L / D;
-  p.mendes_D = D;
-  p.mendes_A = A;
-  // s0: the positive root of g(s) = D (1 - exp(-A s)) - s beyond the peak s* = D ln(L) / L.
-  // g is concave with g(s*) > 0 and g(D) < 0, so bisection is safe; 200 halvings reach round-off.
-  double lo = D * std::log(L) / L, hi = D;
-  for (int k = 0; k < 200 && hi - lo > 1e-16 * D; ++k) {
-    const double mid = 0.5 * (lo + hi);
-    (D * (1 - std::exp(-A * mid)) - mid > 0 ? lo : hi) = mid;
-  }
-  p.break_separation = hi;
 }
 
 MaterialTable::MaterialTable(std::vector<Material> materials, MixingRules rules, const std::vector<PairOverride>& overrides)
@@ -74,11 +53,8 @@ MaterialTable::MaterialTable(std::vector<Material> materials, MixingRules rules,
       p.cohesion = pick(&PairOverride::cohesion, rules_.strength, A.cohesion, B.cohesion);
       p.no_viscous_attraction =
           (o && o->no_viscous_attraction) ? *o->no_viscous_attraction : (A.no_viscous_attraction || B.no_viscous_attraction);
-      switch (p.law) {
-        case NormalLaw::Cundall: p.break_separation = 0; break;
-        case NormalLaw::Liu: p.break_separation = p.tensile_strength / p.kn; break;  // eq. 2.21
-        case NormalLaw::Mendes: derive_mendes(p, pick(&PairOverride::epsilon, rules_.strength, A.epsilon, B.epsilon)); break;
-      }
+      const double epsilon = pick(&PairOverride::epsilon, rules_.strength, A.epsilon, B.epsilon);
+      with_normal_law(p.law, [&](auto law) { law.derive(p, epsilon); });
     }
 }
 
@@ -91,10 +67,7 @@ int MaterialTable::index_of(const std::string& name) const {
 double MaterialTable::max_stiffness() const {
   double k = 0;
   for (const PairParams& p : pairs_) {
-    k = std::max({k, p.kn, p.kt});
-    // The mendes attraction starts with slope T'(0) = kn (D A - 1) = kn (L - 1), steeper than kn
-    // for eps < 1/e^2 (8.2 kn at eps = 1e-4): eq. 2.48 must see it.
-    if (p.law == NormalLaw::Mendes && p.mendes_tension) k = std::max(k, p.kn * (p.mendes_D * p.mendes_A - 1));
+    k = std::max({k, with_normal_law(p.law, [&](auto law) { return law.stiffness(p); }), p.kt});
   }
   return k;
 }

@@ -4,11 +4,9 @@
 #include <string>
 #include <vector>
 
-namespace dem {
+#include "contact/pair_params.hpp"
 
-// Elastic normal law of a material pair (SPEC §6): `cundall` has no tension; `liu` (eq. 2.21) and
-// `mendes` (eq. 2.22-2.25) carry tension on bonded contacts only.
-enum class NormalLaw { Cundall, Liu, Mendes };
+namespace dem {
 
 struct Material {
   std::string name;
@@ -43,29 +41,8 @@ struct PairOverride {
   std::optional<bool> no_viscous_attraction;
 };
 
-// Contact constants of one material pair, derived once (STYLE: a law's constants are precomputed).
-struct PairParams {
-  NormalLaw law = NormalLaw::Cundall;
-  double kn = 0, kt = 0;
-  double mu = 0;        // tan(friction angle)
-  double gamma_n = 0;   // damping ratio from restitution, eq. 2.29
-  double gamma_t = 0;
-  // Dashpots c = damping x sqrt(m*) (eq. 2.28): damping_n = 2 gamma_n sqrt(kn); tangential with the
-  // effective mass 2/7 m* of the contact point (contact/contact_law.hpp): 2 gamma_t sqrt(2/7 kt).
-  double damping_n = 0, damping_t = 0;
-  double tensile_strength = 0;  // F [N]
-  double cohesion = 0;          // C [N]
-  bool no_viscous_attraction = false;
-  // mendes law (eq. 2.23-2.24 with SPEC's signs): T(s) = kn [D (1 - exp(-A s)) - s] for s < s0.
-  bool mendes_tension = false;  // false for epsilon >= 1/e: no tension at all
-  double mendes_D = 0, mendes_A = 0;
-  double break_separation = 0;  // separation s at which a bond breaks: F/kn (liu), s0 (mendes), 0
-};
-
 double mix(MixRule rule, double a, double b);
 double damping_ratio(double restitution);  // gamma = -ln(eta)/sqrt(pi^2 + ln^2 eta), eq. 2.29
-// Fills the mendes constants D, A, the zero s0 of T and whether there is tension at all.
-void derive_mendes(PairParams& p, double epsilon);
 
 class MaterialTable {
  public:

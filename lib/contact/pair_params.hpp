@@ -1,0 +1,30 @@
+#pragma once
+// The contact constants of one material pair, derived once from the materials (state/materials.hpp)
+// and read by the contact law (contact_law.hpp) for every contact of that pair.
+namespace dem {
+
+// Elastic normal law of a material pair (SPEC §6), a code per entry of the table in
+// normal_law_table.hpp (checkpoints store it): `cundall` has no tension; `liu` (eq. 2.21) and
+// `mendes` (eq. 2.22-2.25) carry tension on bonded contacts only.
+enum class NormalLaw { Cundall, Liu, Mendes };
+
+// Contact constants of one material pair, derived once (STYLE: a law's constants are precomputed).
+struct PairParams {
+  NormalLaw law = NormalLaw::Cundall;
+  double kn = 0, kt = 0;
+  double mu = 0;        // tan(friction angle)
+  double gamma_n = 0;   // damping ratio from restitution, eq. 2.29
+  double gamma_t = 0;
+  // Dashpots c = damping x sqrt(m*) (eq. 2.28): damping_n = 2 gamma_n sqrt(kn); tangential with the
+  // effective mass 2/7 m* of the contact point (contact/contact_law.hpp): 2 gamma_t sqrt(2/7 kt).
+  double damping_n = 0, damping_t = 0;
+  double tensile_strength = 0;  // F [N]
+  double cohesion = 0;          // C [N]
+  bool no_viscous_attraction = false;
+  // mendes law (eq. 2.23-2.24 with SPEC's signs): T(s) = kn [D (1 - exp(-A s)) - s] for s < s0.
+  bool mendes_tension = false;  // false for epsilon >= 1/e: no tension at all
+  double mendes_D = 0, mendes_A = 0;
+  double break_separation = 0;  // separation s at which a bond breaks: F/kn (liu), s0 (mendes), 0
+};
+
+}  // namespace dem
