@@ -58,6 +58,14 @@ Simulation make_cloud() {
   return sim;
 }
 
+// The particles stored in a random order (as random placement leaves them).
+void shuffle_storage(Simulation& s, unsigned seed) {
+  std::vector<std::size_t> order(s.particles.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::shuffle(order.begin(), order.end(), std::mt19937_64(seed));
+  s.particles.reorder(order);
+}
+
 // Also with small load blocks (SimParams::load_block), so that the threads share out many blocks,
 // and with the storage re-sorted every 7 steps; three threads too (an odd count, more threads than
 // this machine's cores), and a run whose thread count changes from step to step (the shares of
@@ -141,12 +149,7 @@ TEST(Determinism, StorageOrderAndThreadsChangeNoBit) {
   for (bool walls : {false, true}) {
     auto run = [&](bool shuffled, long sort_every, long block, int threads) {
       Simulation s = make_pressed_lattice(walls);
-      if (shuffled) {
-        std::vector<std::size_t> order(s.particles.size());
-        std::iota(order.begin(), order.end(), 0);
-        std::shuffle(order.begin(), order.end(), std::mt19937_64(5));
-        s.particles.reorder(order);
-      }
+      if (shuffled) shuffle_storage(s, 5);
       s.params.sort_every = sort_every, s.params.sort_min_particles = 0;
       s.params.load_block = block;
       omp_set_num_threads(threads);
@@ -194,10 +197,7 @@ TEST(Determinism, SortedShuffledAndUnsortedRunsWriteIdenticalCheckpoints) {
   auto written = [&](bool shuffled, const std::string& name) {
     Simulation s = make_pressed_lattice(true);
     if (shuffled) {
-      std::vector<std::size_t> order(s.particles.size());
-      std::iota(order.begin(), order.end(), 0);
-      std::shuffle(order.begin(), order.end(), std::mt19937_64(9));
-      s.particles.reorder(order);
+      shuffle_storage(s, 9);
       s.params.sort_every = 7, s.params.sort_min_particles = 0;
     } else {
       s.params.sort_every = 0;
@@ -327,10 +327,7 @@ TEST(Determinism, StorageOrderChangesNoBit) {
   omp_set_num_threads(1);
   for (int s = 0; s < kSteps; ++s) plain.advance();
   Simulation sorted = make_cloud();
-  std::vector<std::size_t> order(sorted.particles.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::shuffle(order.begin(), order.end(), std::mt19937_64(5));
-  sorted.particles.reorder(order);
+  shuffle_storage(sorted, 5);
   sorted.params.sort_every = 7;
   sorted.params.sort_min_particles = 0;
   sorted.params.load_block = 16;
