@@ -9,7 +9,7 @@
 namespace dem {
 
 struct BodyForces {
-  Vec3 gravity = Vec3(0, 0, -9.81);  // [m/s^2]
+  Vec3 gravity = Vec3::Zero();  // [m/s^2] (SimParams::gravity)
 
   // Adds the body forces on a particle of mass m to its force [N].
   void add_to(double mass, Vec3& force) const { force += mass * gravity; }

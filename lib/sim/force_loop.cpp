@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <thread>
@@ -93,6 +94,12 @@ double pair_chunk(const ChunkInput& chunk, long first, long last) {
   }
   return worst;
 }
+
+// set_lagging_thread_for_tests: set between steps, read by the loop's threads.
+struct LaggingThread {
+  int thread = -1;
+  int microseconds = 0;
+} lagging;
 
 // Waits until block b of this force loop (`epoch`) is done: spins, as a barrier does.
 inline void wait_until_done(std::vector<long>& done, long b, long epoch) {
@@ -223,7 +230,8 @@ void sum_pair_contacts(const ForceBlocks& out, const ContactSum* sum, const doub
 }
 
 // The net loads of block b's particles (ForceBlocks): each one's pair contacts in key order, then
-// its wall contacts, then the body forces. Every pair contact of the block's particles is computed.
+// its wall contacts, then the body forces. Called once every block holding a pair contact of
+// theirs has been computed.
 template <class Normal>
 double finish_block(const ForceLoopInput& in, const ContactList& pc, ContactList& wc, ForceBlocks& out, long b,
                     WallScratch& scratch) {
@@ -259,6 +267,7 @@ double block_forces(const ForceLoopInput& in, ContactList& pc, ContactList& wc, 
     deferred.clear();
     const long tick = out.epoch;
     const auto pairs_of = [&](long b) {
+      if (t == lagging.thread) std::this_thread::sleep_for(std::chrono::microseconds(lagging.microseconds));
       for (long first = out.first[b]; first < out.first[b + 1]; first += kChunk) {
         const long last = std::min(out.first[b + 1], first + kChunk);
         worst = std::max(worst, pair_chunk<Normal, Periodic, Fixed>(chunk, first, last));
@@ -299,6 +308,8 @@ double all_forces(const ForceLoopInput& in, ContactList& pairs, ContactList& wal
 }
 
 }  // namespace
+
+void set_lagging_thread_for_tests(int thread, int microseconds) { lagging = {thread, microseconds}; }
 
 void counted_wall_touches(const Particles& p, const std::vector<WallGeometry>& geometry, const ContactList& wc, int first,
                           int n, Vec3* to_wall, std::uint8_t* touching, std::uint8_t* take, int* order) {

@@ -64,6 +64,11 @@ struct ForceBlocks {
   std::vector<LoadSum>& torque;     // per slot: the net torque [N m]
 };
 
+// Tests only: thread `thread` of the force loop pauses `microseconds` before each block whose
+// contacts it computes, so that a particle summed before the contacts it needs (a missing wait)
+// shows in the bits; thread -1: none.
+void set_lagging_thread_for_tests(int thread, int microseconds);
+
 // Which instantiation of the force loop runs: the law every pair shares (contact/normal_law_table.hpp;
 // also cundall for any law while no contact is bonded: without bonds liu and mendes act exactly as
 // cundall), or none: the law chosen per contact ("mixed").
