@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "contact/damping.hpp"
 #include "sim/simulation.hpp"
 
 namespace dem::bench {

@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "contact/contact_law.hpp"
-#include "contact/normal_law_table.hpp"
+#include "contact/model_table.hpp"
 #include "core/error.hpp"
 #include "sim/force_loop.hpp"
 #include "sim/simulation.hpp"
@@ -53,7 +53,7 @@ Material bond_material(NormalLaw law, double epsilon = 1e-4) {
 PairParams pair_params(const Material& m) { return MaterialTable({m}, {}).pair(0, 0); }
 
 // ---------------------------------------------------------------------------------------------
-// The table of normal laws (contact/normal_law_table.hpp): every code has a keyword that names it
+// The table of normal laws (contact/model_table.hpp): every code has a keyword that names it
 // back, and what each law owns agrees with its own force, checked numerically (a bonded pair of
 // each law with F = 1 N, kn = 1e5 N/m): the stiffness for eq. 2.48 is at least the largest slope
 // |dF/du| over compression and tension up to the break (central differences, 1e-6 relative), and
@@ -133,7 +133,7 @@ double law_tension(const PairParams& p, double s, std::uint8_t& bonded) {
   c.v_rel = c.w_arm = Vec3::Zero();
   c.m_eff = 1.0;
   Vec3 spring = Vec3::Zero();
-  return ContactLaw<Normal>::evaluate(p, c, 1e-6, spring, bonded).on_i.dot(c.n);
+  return ContactModel<Normal>::evaluate(p, c, 1e-6, spring, bonded).on_i.dot(c.n);
 }
 
 // ---------------------------------------------------------------------------------------------

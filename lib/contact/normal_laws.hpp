@@ -9,7 +9,7 @@
 // A law written over a lane type (simd/lanes.hpp) also runs four contacts at a time (four_wide:
 // CundallNormal); the others one at a time (L = double, P = PairParams).
 //
-// How to add a law: a struct here with the members below, its entry in normal_law_table.hpp (one
+// How to add a law: a struct here with the members below, its entry in model_table.hpp (one
 // enum value in contact/pair_params.hpp, one case), its tests, and its keyword in docs/scene.md.
 #include <algorithm>
 #include <cmath>

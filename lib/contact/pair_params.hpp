@@ -4,7 +4,7 @@
 namespace dem {
 
 // Elastic normal law of a material pair (SPEC §6), a code per entry of the table in
-// normal_law_table.hpp (checkpoints store it): `cundall` has no tension; `liu` (eq. 2.21) and
+// model_table.hpp (checkpoints store it): `cundall` has no tension; `liu` (eq. 2.21) and
 // `mendes` (eq. 2.22-2.25) carry tension on bonded contacts only.
 enum class NormalLaw { Cundall, Liu, Mendes };
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "contact/model_table.hpp"
 #include "core/error.hpp"
 #include "scene/scene.hpp"
 #include "sim/simulation.hpp"
@@ -55,11 +56,14 @@ ServoGroup servo_group(const std::vector<Wall>& walls, double t, const std::stri
 
 void servo_constants(const Simulation& sim, double& k_max, double& c_max) {
   k_max = sim.materials.max_stiffness();
-  double m_max = 0, gamma_max = 0;
+  double m_max = 0;
   for (double m : sim.particles.mass) m_max = std::max(m_max, m);
+  c_max = 0;  // the largest normal dashpot against the heaviest particle (wall: m* = m_i)
   for (std::size_t a = 0; a < sim.materials.size(); ++a)
-    for (std::size_t b = 0; b < sim.materials.size(); ++b) gamma_max = std::max(gamma_max, sim.materials.pair(a, b).gamma_n);
-  c_max = 2 * gamma_max * std::sqrt(m_max * k_max);  // eq. 2.27-2.28, wall: m* = m_i
+    for (std::size_t b = 0; b < sim.materials.size(); ++b) {
+      const PairParams& p = sim.materials.pair(a, b);
+      c_max = std::max(c_max, with_damping(p, [&](auto d) { return d.largest_normal(p, m_max, k_max); }));
+    }
 }
 
 void update_areas(const Simulation& sim, std::vector<ServoGroup>& groups) {

@@ -11,7 +11,7 @@
 #include <cstring>
 #include <filesystem>
 
-#include "contact/normal_law_table.hpp"
+#include "contact/model_table.hpp"
 #include "core/error.hpp"
 #include "core/version.hpp"
 #include "io/file_seal.hpp"

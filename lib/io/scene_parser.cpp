@@ -13,7 +13,7 @@
 #include <stdexcept>
 #include <toml++/toml.h>
 
-#include "contact/normal_law_table.hpp"
+#include "contact/model_table.hpp"
 #include "core/error.hpp"
 #include "io/stl.hpp"
 #include "walls/primitives.hpp"

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "contact/normal_law_table.hpp"
+#include "contact/model_table.hpp"
 #include "sim/force_loop.hpp"
 
 namespace dem {
@@ -37,7 +37,9 @@ double normal_energy_bound(const PairParams& q, double u, bool bonded) {
   return with_normal_law(q.law, [&](auto law) { return law.stored_energy(q, u, bonded); });
 }
 
-double spring_energy(const PairParams& q, const Vec3& spring) { return q.kt > 0 ? 0.5 * spring.squaredNorm() / q.kt : 0.0; }
+double spring_energy(const PairParams& q, const Vec3& spring) {
+  return with_tangential_law(q, [&](auto law) { return law.stored_energy(q, spring); });
+}
 
 }  // namespace
 

@@ -11,7 +11,7 @@
 #include <type_traits>
 
 #include "contact/contact_law.hpp"
-#include "contact/normal_law_table.hpp"
+#include "contact/model_table.hpp"
 #include "sim/find_contacts.hpp"
 #include "sim/pair_law.hpp"
 #include "simd/simd.hpp"
@@ -81,14 +81,14 @@ double pair_chunk(const ChunkInput& chunk, long first, long last) {
   }
   for (int e = 0; e < m; ++e) {
     const long k = contact[e];
-    a.spring[k] = ContactLaw<Normal>::in_tangent_plane(a.spring[k], kin[e].n);
+    a.spring[k] = ContactModel<Normal>::in_tangent_plane(a.spring[k], kin[e].n);
   }
   for (int e = 0; e < m; ++e) {
     const long k = contact[e];
     const int i = a.slot_i[k], j = a.slot_j[k];
     const ContactKinematics& c = kin[e];
     const PairParams& params = materials.pair(a.material[i], a.material[j]);
-    const ContactForce f = ContactLaw<Normal>::evaluate_in_plane(params, c, dt, a.spring[k], a.bonded[k]);
+    const ContactForce f = ContactModel<Normal>::evaluate_in_plane(params, c, dt, a.spring[k], a.bonded[k]);
     keep_pair_result(a, k, c.n, f.on_i, c.n.cross(f.tangential));
     worst = std::max(worst, relative_overlap_if_larger(c.overlap, std::min(a.radius[i], a.radius[j]), worst));
   }
@@ -167,7 +167,7 @@ double wall_run(const ForceLoopInput& in, ContactList& wc, ForceBlocks& out, lon
     c.v_rel = g.velocity_of(p.x[i] + to_wall[e]) - p.v[i];
     c.w_arm = p.radius[i] * p.w[i];
     c.m_eff = p.mass[i];
-    const ContactForce f = ContactLaw<Normal>::evaluate(in.materials.pair(p.material[i], in.walls[wc.slot_j[k]].material), c,
+    const ContactForce f = ContactModel<Normal>::evaluate(in.materials.pair(p.material[i], in.walls[wc.slot_j[k]].material), c,
                                                         in.dt, wc.spring[k], wc.bonded[k]);
     const Vec3 torque_per_radius = c.n.cross(f.tangential);
     wc.active[k] = 1;

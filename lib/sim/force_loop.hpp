@@ -69,7 +69,7 @@ struct ForceBlocks {
 // shows in the bits; thread -1: none.
 void set_lagging_thread_for_tests(int thread, int microseconds);
 
-// Which instantiation of the force loop runs: the law every pair shares (contact/normal_law_table.hpp;
+// Which instantiation of the force loop runs: the law every pair shares (contact/model_table.hpp;
 // also cundall for any law while no contact is bonded: without bonds liu and mendes act exactly as
 // cundall), or none: the law chosen per contact ("mixed").
 using ForceVariant = std::optional<NormalLaw>;

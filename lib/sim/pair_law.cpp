@@ -13,6 +13,7 @@ using lanes::Lanes4;
 using lanes::Mask4;
 using lanes::Triple;
 using V3 = Triple<Lanes4>;
+using Model = ContactModel<CundallNormal>;  // the model of every scene without bonds
 #define AVX2 [[gnu::target("avx2"), gnu::always_inline]] inline
 
 AVX2 Lanes4 gather(const double* base, __m128i index) { return simd::gather(base, index); }
@@ -130,8 +131,8 @@ template <bool Fixed, bool Bonds>
     }
     // Without bonds (Bonds false: no contact of the scene holds one) every lane's flag is false.
     Mask4 bonded = Bonds ? lanes::mask4(a.bonded[kl[0]], a.bonded[kl[1]], a.bonded[kl[2]], a.bonded[kl[3]]) : Mask4{};
-    V3 spring = in_tangent_plane(load_four(a.spring, kl), c.n);
-    const LaneForce<Lanes4> f = evaluate_in_plane<CundallNormal>(law, c, dt, spring, bonded);  // Cundall bonds never break
+    V3 spring = Model::TangentialModel::in_tangent_plane(load_four(a.spring, kl), c.n);
+    const LaneForce<Lanes4> f = Model::evaluate_in_plane(law, c, dt, spring, bonded);  // Cundall bonds never break
     const V3 torque_per_radius = cross(c.n, f.tangential);
 
     const int count = std::min(4, m - e);

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "contact/normal_law_table.hpp"
+#include "contact/model_table.hpp"
 
 namespace dem {
 
@@ -16,12 +16,6 @@ double mix(MixRule rule, double a, double b) {
     case MixRule::Mean: return 0.5 * (a + b);
   }
   return a;
-}
-
-double damping_ratio(double eta) {
-  // eq. 2.29 (Tsuji et al.): realised restitution equals eta for the unclipped linear dashpot.
-  const double l = std::log(eta);
-  return -l / std::sqrt(std::numbers::pi * std::numbers::pi + l * l);
 }
 
 MaterialTable::MaterialTable(std::vector<Material> materials, MixingRules rules, const std::vector<PairOverride>& overrides)
@@ -45,10 +39,9 @@ MaterialTable::MaterialTable(std::vector<Material> materials, MixingRules rules,
       p.kn = pick(&PairOverride::kn, rules_.stiffness, A.kn, B.kn);
       p.kt = pick(&PairOverride::kt, rules_.stiffness, A.kt, B.kt);
       p.mu = std::tan(pick(&PairOverride::friction_angle, rules_.friction, A.friction_angle, B.friction_angle) * deg);
-      p.gamma_n = damping_ratio(pick(&PairOverride::restitution, rules_.restitution, A.restitution, B.restitution));
-      p.gamma_t = damping_ratio(pick(&PairOverride::restitution_t, rules_.restitution, A.restitution_t, B.restitution_t));
-      p.damping_n = 2.0 * p.gamma_n * std::sqrt(p.kn);
-      p.damping_t = 2.0 * p.gamma_t * std::sqrt(2.0 / 7.0 * p.kt);
+      const double eta = pick(&PairOverride::restitution, rules_.restitution, A.restitution, B.restitution);
+      const double eta_t = pick(&PairOverride::restitution_t, rules_.restitution, A.restitution_t, B.restitution_t);
+      with_damping(p, [&](auto damping) { damping.derive(p, eta, eta_t); });
       p.tensile_strength = pick(&PairOverride::tensile_strength, rules_.strength, A.tensile_strength, B.tensile_strength);
       p.cohesion = pick(&PairOverride::cohesion, rules_.strength, A.cohesion, B.cohesion);
       p.no_viscous_attraction =
@@ -67,7 +60,8 @@ int MaterialTable::index_of(const std::string& name) const {
 double MaterialTable::max_stiffness() const {
   double k = 0;
   for (const PairParams& p : pairs_) {
-    k = std::max({k, with_normal_law(p.law, [&](auto law) { return law.stiffness(p); }), p.kt});
+    k = std::max({k, with_normal_law(p.law, [&](auto law) { return law.stiffness(p); }),
+                  with_tangential_law(p, [&](auto law) { return law.stiffness(p); })});
   }
   return k;
 }

@@ -42,7 +42,6 @@ struct PairOverride {
 };
 
 double mix(MixRule rule, double a, double b);
-double damping_ratio(double restitution);  // gamma = -ln(eta)/sqrt(pi^2 + ln^2 eta), eq. 2.29
 
 class MaterialTable {
  public:

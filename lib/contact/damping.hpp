@@ -1,0 +1,52 @@
+#pragma once
+// Viscous damping from restitution (SPEC §6, eq. 2.27-2.29), a sub-model of the contact law
+// (contact/contact_law.hpp): the dashpot coefficients of one contact, c = 2 gamma sqrt(m k). It
+// owns its constants (derive), and what a servo needs to bound a wall's response (largest_normal).
+//
+// A damping sub-model has: `keyword`; `coefficients(p, c)` (its normal and tangential dashpots
+// for contact kinematics c, over a lane type); `derive(p, restitution, tangential_restitution)`;
+// `largest_normal(p, mass)` (the largest normal coefficient against a particle of that mass).
+#include <cmath>
+#include <numbers>
+#include <string_view>
+
+#include "contact/kinematics.hpp"
+#include "contact/pair_params.hpp"
+#include "simd/lanes.hpp"
+
+namespace dem {
+
+// gamma = -ln(eta) / sqrt(pi^2 + ln^2 eta), eq. 2.29 (Tsuji et al.): the restitution of the
+// linear spring and dashpot, unclipped, is eta.
+inline double damping_ratio(double eta) {
+  const double l = std::log(eta);
+  return -l / std::sqrt(std::numbers::pi * std::numbers::pi + l * l);
+}
+
+template <class L>
+struct Dashpots {
+  L normal, tangential;  // [N s/m]
+};
+
+struct ViscousDamping {
+  static constexpr std::string_view keyword = "viscous";
+  // c_n = 2 gamma_n sqrt(m* kn) (eq. 2.28); c_t with the effective mass 2/7 m* of the contact
+  // point (spheres that also spin: 1/m_t = 7/2 (1/m_i + 1/m_j)): eq. 2.28 with m* would over-damp
+  // it by sqrt(7/2) and make near-critical eta_t unstable in the explicit scheme.
+  template <class P, class L>
+  [[gnu::always_inline]] static Dashpots<L> coefficients(const P& p, const LaneKinematics<L>& c) {
+    const L sqrt_m = lanes::root(c.m_eff);
+    return {p.damping_n * sqrt_m, p.damping_t * sqrt_m};
+  }
+  static void derive(PairParams& p, double restitution, double tangential_restitution) {
+    p.gamma_n = damping_ratio(restitution);
+    p.gamma_t = damping_ratio(tangential_restitution);
+    p.damping_n = 2.0 * p.gamma_n * std::sqrt(p.kn);
+    p.damping_t = 2.0 * p.gamma_t * std::sqrt(2.0 / 7.0 * p.kt);
+  }
+  static double largest_normal(const PairParams& p, double mass, double stiffness) {
+    return 2 * p.gamma_n * std::sqrt(mass * stiffness);
+  }
+};
+
+}  // namespace dem

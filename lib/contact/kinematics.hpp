@@ -1,0 +1,38 @@
+#pragma once
+// What a contact law sees of one contact (its kinematics) and what it gives back (its force), for
+// one contact with Eigen's vectors or over a lane type (simd/lanes.hpp).
+#include "core/types.hpp"
+#include "simd/lanes.hpp"
+
+namespace dem {
+
+// Relative kinematics of one contact, as seen from particle i (SPEC §5).
+struct ContactKinematics {
+  Vec3 n;          // unit normal from i to j (eq. 2.11 direction)
+  double overlap;  // u_n > 0 in compression (eq. 2.11 / 2.17)
+  Vec3 v_rel;      // v_j - v_i at the centres (wall: wall velocity - v_i)
+  Vec3 w_arm;      // a_j w_j + a_i w_i (wall: a_i w_i), for eq. 2.12
+  double m_eff;    // m_i m_j / (m_i + m_j), wall: m_i
+};
+
+struct ContactForce {
+  Vec3 on_i;        // total force on i [N]; j receives the opposite (eq. 2.31-2.32)
+  Vec3 tangential;  // tangential part of on_i, for the torques of eq. 2.33-2.34
+};
+
+// The law, written once over a lane type L (simd/lanes.hpp): one contact (L = double, from the
+// plain loops, contact_law.hpp) or four (L = Lanes4, sim/pair_law.cpp). `P` holds the pair
+// constants by PairParams' names, as doubles or as lanes; `M` is L's mask type.
+template <class L>
+struct LaneKinematics {
+  lanes::Triple<L> n;  // as ContactKinematics
+  L overlap;
+  lanes::Triple<L> v_rel, w_arm;
+  L m_eff;
+};
+template <class L>
+struct LaneForce {
+  lanes::Triple<L> on_i, tangential;  // as ContactForce
+};
+
+}  // namespace dem

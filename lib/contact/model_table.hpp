@@ -1,0 +1,92 @@
+#pragma once
+// The one table of contact sub-models: for each kind (elastic normal law, damping, tangential
+// law), the list of its models. A model's code is its place in the list (checkpoints store the
+// normal law's); its keyword is its own. The parser, the materials (constants, eq. 2.48), the
+// energy check, the servo and the force loop ask these tables, never a switch of their own.
+// A new model: its type in its kind's file, one entry in its list below (a normal law also one
+// value of NormalLaw, contact/pair_params.hpp, in the same place), its tests, its keys in
+// docs/scene.md.
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "contact/damping.hpp"
+#include "contact/normal_laws.hpp"
+#include "contact/pair_params.hpp"
+#include "contact/tangential.hpp"
+
+namespace dem {
+
+template <class... Models>
+struct ModelTable {
+  static constexpr int size = sizeof...(Models);
+
+  // f(Model{}) for the model of `code` (the first for a code out of range: callers check codes).
+  template <class F>
+  static decltype(auto) with(int code, F&& f) {
+    return with_from<0, Models...>(code, f);
+  }
+  static std::string_view name(int code) {
+    return with(code, [](auto m) { return decltype(m)::keyword; });
+  }
+  // The code of a keyword, or none.
+  static std::optional<int> named(std::string_view keyword) {
+    for (int c = 0; c < size; ++c)
+      if (name(c) == keyword) return c;
+    return std::nullopt;
+  }
+  static std::vector<std::string> names() {
+    std::vector<std::string> all;
+    for (int c = 0; c < size; ++c) all.emplace_back(name(c));
+    return all;
+  }
+
+ private:
+  template <int Code, class M, class... Rest, class F>
+  static decltype(auto) with_from(int code, F& f) {
+    if constexpr (sizeof...(Rest) > 0)
+      if (code != Code) return with_from<Code + 1, Rest...>(code, f);
+    return f(M{});
+  }
+};
+
+// Elastic normal laws, in the order of NormalLaw's codes.
+using NormalLaws = ModelTable<CundallNormal, LiuNormal, MendesNormal>;
+using Dampings = ModelTable<ViscousDamping>;
+using TangentialLaws = ModelTable<CoulombSpring>;
+
+constexpr int kNormalLaws = NormalLaws::size;  // codes 0 .. kNormalLaws - 1
+
+// f(Law{}) for the law of code `law`: f is called with an object of the law's type.
+template <class F>
+decltype(auto) with_normal_law(NormalLaw law, F&& f) {
+  return NormalLaws::with(static_cast<int>(law), f);
+}
+inline std::string_view normal_law_name(NormalLaw law) { return NormalLaws::name(static_cast<int>(law)); }
+inline std::optional<NormalLaw> normal_law_named(std::string_view keyword) {
+  const std::optional<int> c = NormalLaws::named(keyword);
+  return c ? std::optional<NormalLaw>(static_cast<NormalLaw>(*c)) : std::nullopt;
+}
+inline std::vector<std::string> normal_law_names() { return NormalLaws::names(); }
+
+// A scene whose material pairs use different laws: the law of each contact's pair, per contact.
+struct MixedNormal {
+  static constexpr bool four_wide = false;
+  static double elastic(const PairParams& p, double u, bool& bonded) {
+    return with_normal_law(p.law, [&](auto law) { return decltype(law)::elastic(p, u, bonded); });
+  }
+};
+
+// The damping and tangential models of a pair (one of each today, so every pair shares them; a
+// second one adds a code to PairParams).
+template <class F>
+decltype(auto) with_damping(const PairParams& /*p*/, F&& f) {
+  return Dampings::with(0, f);
+}
+template <class F>
+decltype(auto) with_tangential_law(const PairParams& /*p*/, F&& f) {
+  return TangentialLaws::with(0, f);
+}
+
+}  // namespace dem
