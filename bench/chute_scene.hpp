@@ -45,8 +45,8 @@ inline MaterialTable chute_materials() {
   PairOverride on_base;
   on_base.a = 0;
   on_base.b = 1;
-  on_base.restitution = restitution_of(kChuteGammaN * std::sqrt(m / kChuteKn) / 2);
-  on_base.restitution_t = 1;
+  on_base.set("restitution", restitution_of(kChuteGammaN * std::sqrt(m / kChuteKn) / 2));
+  on_base.set("tangential_restitution", 1);
   return MaterialTable({free, base}, {}, {on_base});
 }
 

@@ -46,8 +46,8 @@ inline MaterialTable settle_materials(double eta = 0.5) {
   PairOverride bw;
   bw.a = 0;
   bw.b = 1;
-  bw.restitution = restitution_of(std::sqrt(2.0) * g);
-  bw.restitution_t = restitution_of(7.0 / 4.0 * std::sqrt(2.0) * g);
+  bw.set("restitution", restitution_of(std::sqrt(2.0) * g));
+  bw.set("tangential_restitution", restitution_of(7.0 / 4.0 * std::sqrt(2.0) * g));
   return MaterialTable({bead, wall}, {}, {bw});
 }
 

@@ -10,13 +10,14 @@ import numpy as np
 def main(path, expect_writer):
     with h5py.File(path, "r") as f:
         assert f.attrs["format"] == b"dem-checkpoint", f.attrs["format"]
-        assert int(f.attrs["schema_version"]) == 2
+        assert int(f.attrs["schema_version"]) == 3
         assert f.attrs["writer"].decode() == expect_writer, f.attrs["writer"]
         assert len(f.attrs["writer_version"]) > 0
 
         n = f["particles/id"].shape[0]
         m = f["materials/name"].shape[0]
         w = f["walls/name"].shape[0]
+        npairs = f["pairs/materials"].shape[0]
         assert n > 0 and m > 0
         # path: (dtype kind, shape, units or None)
         spec = {
@@ -40,6 +41,12 @@ def main(path, expect_writer):
             "materials/tensile_strength": ("f", (m,), "N"), "materials/cohesion": ("f", (m,), "N"),
             "materials/epsilon": ("f", (m,), "1"), "materials/law": ("i", (m,), None),
             "materials/no_viscous_attraction": ("i", (m,), None),
+            "pairs/materials": ("i", (npairs, 2), None), "pairs/law": ("i", (npairs,), None),
+            "pairs/kn": ("f", (npairs,), "N/m"), "pairs/kt": ("f", (npairs,), "N/m"),
+            "pairs/friction_angle": ("f", (npairs,), "degree"), "pairs/restitution": ("f", (npairs,), "1"),
+            "pairs/tangential_restitution": ("f", (npairs,), "1"), "pairs/tensile_strength": ("f", (npairs,), "N"),
+            "pairs/cohesion": ("f", (npairs,), "N"), "pairs/epsilon": ("f", (npairs,), "1"),
+            "pairs/no_viscous_attraction": ("i", (npairs,), None),
             "walls/name": ("S", (w,), None), "walls/material": ("i", (w,), None),
             "walls/vertex_count": ("i", (w,), None), "walls/base_vertices": ("f", (w, 4, 3), "m"),
             "walls/vertices": ("f", (w, 4, 3), "m"), "walls/motion_table": ("i", (w,), None),
@@ -84,7 +91,7 @@ def main(path, expect_writer):
             assert np.all(pairs[:, 0] < pairs[:, 1]), "pair keys ordered id_i < id_j"
             assert np.all(np.isin(pairs, ids)), "pair keys are particle ids"
         assert f["state/dt"][0] > 0 and f["state/step"][0] > 0
-    print(f"{path}: schema v2 ok ({n} particles, {m} materials, {w} walls)")
+    print(f"{path}: schema v3 ok ({n} particles, {m} materials, {w} walls)")
 
 
 if __name__ == "__main__":

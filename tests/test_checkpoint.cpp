@@ -30,7 +30,14 @@ class CheckpointTest : public ::testing::Test {
     fs::create_directories(dir_);
     Material m;
     m.name = "glass";
-    sim_.materials = MaterialTable({m, Material{"steel", 7800, 2e5, 1e5, 20, 0.4, 0.6, NormalLaw::Cundall}}, {});
+    Material steel;
+    steel.name = "steel", steel.density = 7800, steel.kn = 2e5, steel.kt = 1e5, steel.friction_angle = 20, steel.restitution = 0.4,
+    steel.restitution_t = 0.6;
+    PairOverride glass_steel;  // a [[pair]]: the checkpoint must hold it (schema 3)
+    glass_steel.b = 1;
+    glass_steel.set("friction_angle", 33);
+    glass_steel.set("no_viscous_attraction", 1);
+    sim_.materials = MaterialTable({m, steel}, {}, {glass_steel});
     sim_.walls.push_back(Wall{"floor", 1, {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0, 1, 0)}, {}});
     WallMotion vib;  // every part of a motion at once: it must come back exactly
     vib.frequency = 20;
@@ -121,6 +128,18 @@ TEST_F(CheckpointTest, RoundTripIsExact) {
   EXPECT_EQ(a.angular_speed, b.angular_speed);
   EXPECT_EQ(a.t0, b.t0);
   EXPECT_EQ(s.materials.materials()[1].kt, 1e5);
+  // Every pair's constants as written, the [[pair]] override included (by hand: tan 33 degrees).
+  for (int a = 0; a < 2; ++a)
+    for (int b = 0; b < 2; ++b) {
+      const PairParams &p = s.materials.pair(a, b), &q = sim_.materials.pair(a, b);
+      EXPECT_EQ(p.mu, q.mu);
+      EXPECT_EQ(p.kn, q.kn);
+      EXPECT_EQ(p.damping_n, q.damping_n);
+      EXPECT_EQ(p.no_viscous_attraction, q.no_viscous_attraction);
+    }
+  EXPECT_NEAR(s.materials.pair(1, 0).mu, 0.6494075931975106, 1e-15);
+  EXPECT_TRUE(s.materials.pair(0, 1).no_viscous_attraction);
+  EXPECT_FALSE(s.materials.pair(1, 1).no_viscous_attraction);
   EXPECT_EQ(m.run.stage, "shake");
   EXPECT_EQ(m.run.frame_times, meta_.run.frame_times);
   EXPECT_EQ(m.run.servo_integral, meta_.run.servo_integral);
@@ -224,6 +243,24 @@ TEST_F(CheckpointTest, WrongSchemaVersion) {
   expect_rejected(path_, "does not match its seal");  // an edited file is refused as such
   reseal(path_);
   expect_rejected(path_, "schema version 99");
+}
+
+// A schema 2 file (before [[pair]] overrides were stored) is still read, without overrides.
+TEST_F(CheckpointTest, SchemaTwoIsReadWithoutPairOverrides) {
+  hid_t f = H5Fopen(path_.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  hid_t a = H5Aopen(f, "schema_version", H5P_DEFAULT);
+  const int v = 2;
+  H5Awrite(a, H5T_NATIVE_INT, &v);
+  H5Aclose(a);
+  H5Ldelete(f, "/pairs", H5P_DEFAULT);
+  H5Fclose(f);
+  reseal(path_);
+  Simulation s;
+  CheckpointMeta m;
+  read_checkpoint(path_, s, m);
+  EXPECT_TRUE(s.materials.overrides().empty());
+  EXPECT_EQ(s.materials.pair(0, 1).mu, std::tan(20 * (M_PI / 180)));  // mixed: the smaller angle
+  EXPECT_EQ(s.particles.x, sim_.particles.x);
 }
 
 TEST_F(CheckpointTest, MissingDataset) {

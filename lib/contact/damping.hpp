@@ -3,15 +3,18 @@
 // (contact/contact_law.hpp): the dashpot coefficients of one contact, c = 2 gamma sqrt(m k). It
 // owns its constants (derive), and what a servo needs to bound a wall's response (largest_normal).
 //
-// A damping sub-model has: `keyword`; `coefficients(p, c)` (its normal and tangential dashpots
-// for contact kinematics c, over a lane type); `derive(p, restitution, tangential_restitution)`;
-// `largest_normal(p, mass)` (the largest normal coefficient against a particle of that mass).
+// A damping sub-model has: `keyword`; `keys` (its scene keys, contact/properties.hpp);
+// `coefficients(p, c)` (its normal and tangential dashpots for contact kinematics c, over a lane
+// type); `derive(p, properties)` (after the normal and tangential laws': it reads their
+// stiffnesses); `largest_normal(p, mass, stiffness)` (the largest normal coefficient against a
+// particle of that mass, for a servo's response).
 #include <cmath>
 #include <numbers>
 #include <string_view>
 
 #include "contact/kinematics.hpp"
 #include "contact/pair_params.hpp"
+#include "contact/properties.hpp"
 #include "simd/lanes.hpp"
 
 namespace dem {
@@ -38,9 +41,17 @@ struct ViscousDamping {
     const L sqrt_m = lanes::root(c.m_eff);
     return {p.damping_n * sqrt_m, p.damping_t * sqrt_m};
   }
-  static void derive(PairParams& p, double restitution, double tangential_restitution) {
-    p.gamma_n = damping_ratio(restitution);
-    p.gamma_t = damping_ratio(tangential_restitution);
+  static constexpr PropertyKey keys[] = {
+      {.keyword = "restitution", .number = &ContactProperties::restitution, .lo = 0, .hi = 1, .lo_open = true,
+       .unit = "(eta_n, eq. 2.29)", .si_unit = "1", .mixing = &MixingRules::restitution, .default_value = 1},
+      {.keyword = "tangential_restitution", .number = &ContactProperties::restitution_t, .lo = 0, .hi = 1, .lo_open = true,
+       .unit = "(eta_t, eq. 2.29)", .si_unit = "1", .mixing = &MixingRules::restitution, .default_key = "restitution"},
+      {.keyword = "no_viscous_attraction", .flag = &ContactProperties::no_viscous_attraction}};
+  static void derive(PairParams& p, const PairProperties& pair) {
+    const ContactProperties& q = pair.mixed;
+    p.no_viscous_attraction = q.no_viscous_attraction;
+    p.gamma_n = damping_ratio(q.restitution);
+    p.gamma_t = damping_ratio(q.restitution_t);
     p.damping_n = 2.0 * p.gamma_n * std::sqrt(p.kn);
     p.damping_t = 2.0 * p.gamma_t * std::sqrt(2.0 / 7.0 * p.kt);
   }

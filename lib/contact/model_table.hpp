@@ -6,6 +6,7 @@
 // A new model: its type in its kind's file, one entry in its list below (a normal law also one
 // value of NormalLaw, contact/pair_params.hpp, in the same place), its tests, its keys in
 // docs/scene.md.
+#include <algorithm>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -14,6 +15,7 @@
 #include "contact/damping.hpp"
 #include "contact/normal_laws.hpp"
 #include "contact/pair_params.hpp"
+#include "contact/properties.hpp"
 #include "contact/tangential.hpp"
 
 namespace dem {
@@ -77,6 +79,47 @@ struct MixedNormal {
     return with_normal_law(p.law, [&](auto law) { return decltype(law)::elastic(p, u, bonded); });
   }
 };
+
+// The scene keys a material with normal law `law` reads: its law's, then its damping's and its
+// tangential law's, each once, in that order (a key's default_key comes before it).
+inline std::vector<PropertyKey> property_keys(NormalLaw law) {
+  std::vector<PropertyKey> keys;
+  auto add = [&](const auto& list) {
+    for (const PropertyKey& k : list)
+      if (std::none_of(keys.begin(), keys.end(), [&](const PropertyKey& o) { return o.keyword == k.keyword; })) keys.push_back(k);
+  };
+  with_normal_law(law, [&](auto m) { add(decltype(m)::keys); });
+  Dampings::with(0, [&](auto m) { add(decltype(m)::keys); });
+  TangentialLaws::with(0, [&](auto m) { add(decltype(m)::keys); });
+  return keys;
+}
+// Every key of every model, each once: what a checkpoint stores per material.
+inline std::vector<PropertyKey> all_property_keys() {
+  std::vector<PropertyKey> keys;
+  for (int c = 0; c < kNormalLaws; ++c)
+    for (const PropertyKey& k : property_keys(static_cast<NormalLaw>(c)))
+      if (std::none_of(keys.begin(), keys.end(), [&](const PropertyKey& o) { return o.keyword == k.keyword; })) keys.push_back(k);
+  return keys;
+}
+// The normal laws that read a key, e.g. "liu, mendes" (for messages).
+inline std::string laws_reading(std::string_view keyword) {
+  std::string list;
+  for (int c = 0; c < kNormalLaws; ++c)
+    for (const PropertyKey& k : property_keys(static_cast<NormalLaw>(c)))
+      if (k.keyword == keyword) list += (list.empty() ? "" : ", ") + std::string(NormalLaws::name(c));
+  return list;
+}
+
+// The constants of a material pair with normal law `law` from its properties: each sub-model
+// derives its own; the damping last, as it reads the stiffnesses.
+inline PairParams derive_pair_params(NormalLaw law, const PairProperties& q) {
+  PairParams p;
+  p.law = law;
+  with_normal_law(law, [&](auto m) { m.derive(p, q); });
+  TangentialLaws::with(0, [&](auto m) { m.derive(p, q); });
+  Dampings::with(0, [&](auto m) { m.derive(p, q); });
+  return p;
+}
 
 // The damping and tangential models of a pair (one of each today, so every pair shares them; a
 // second one adds a code to PairParams).

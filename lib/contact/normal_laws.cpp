@@ -4,7 +4,11 @@
 
 namespace dem {
 
-void MendesNormal::derive(PairParams& p, double epsilon) {
+void MendesNormal::derive(PairParams& p, const PairProperties& pair) {
+  const ContactProperties& q = pair.mixed;
+  p.kn = q.kn;
+  p.tensile_strength = q.tensile_strength;
+  const double epsilon = q.epsilon;
   // eq. 2.23-2.24 (SPEC §6): L = -ln eps, D = F L / (kn (L - 1 - ln L)), A = L / D. For
   // eps >= 1/e, L <= 1 and there is no tension (Cundall).
   const double L = -std::log(epsilon);

@@ -6,6 +6,9 @@
 // repulsive. `bonded` is the contact's bond flag Φ; a law clears it when the bond fails in this
 // step (irreversible, SPEC §6 Decision).
 //
+// Each law lists the scene keys it reads (`keys`, contact/properties.hpp) and derives its
+// constants from them (`derive`).
+//
 // A law written over a lane type (simd/lanes.hpp) also runs four contacts at a time (four_wide:
 // CundallNormal); the others one at a time (L = double, P = PairParams).
 //
@@ -13,12 +16,25 @@
 // enum value in contact/pair_params.hpp, one case), its tests, and its keyword in docs/scene.md.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string_view>
 
 #include "contact/pair_params.hpp"
+#include "contact/properties.hpp"
 #include "simd/lanes.hpp"
 
 namespace dem {
+
+// The scene keys the laws read (contact/properties.hpp).
+inline constexpr PropertyKey kNormalStiffnessKey{.keyword = "kn", .number = &ContactProperties::kn, .lo = 0,
+                                                 .hi = std::numeric_limits<double>::infinity(), .lo_open = true, .unit = "N/m",
+                                                 .si_unit = "N/m", .mixing = &MixingRules::stiffness, .required = true};
+inline constexpr PropertyKey kTensileStrengthKey{.keyword = "tensile_strength", .number = &ContactProperties::tensile_strength, .lo = 0,
+                                                 .hi = std::numeric_limits<double>::infinity(), .unit = "N (F, bonded contacts)",
+                                                 .si_unit = "N", .mixing = &MixingRules::strength};
+inline constexpr PropertyKey kMendesEpsilonKey{.keyword = "epsilon", .number = &ContactProperties::epsilon, .lo = 0, .hi = 1,
+                                               .lo_open = true, .hi_open = true, .unit = "(mendes law, eq. 2.23)", .si_unit = "1",
+                                               .mixing = &MixingRules::strength, .default_value = 1e-4};
 
 // The energy bound of the linear compression every law shares: ½ kn u² [J].
 inline double linear_compression_energy(const PairParams& p, double u) { return u > 0 ? 0.5 * p.kn * u * u : 0.0; }
@@ -33,7 +49,12 @@ struct CundallNormal {
   }
   static double stored_energy(const PairParams& p, double u, bool /*bonded*/) { return linear_compression_energy(p, u); }
   static double stiffness(const PairParams& p) { return p.kn; }
-  static void derive(PairParams& p, double /*epsilon*/) { p.break_separation = 0; }
+  static constexpr PropertyKey keys[] = {kNormalStiffnessKey};
+  static void derive(PairParams& p, const PairProperties& pair) {
+    const ContactProperties& q = pair.mixed;
+    p.kn = q.kn;
+    p.break_separation = 0;
+  }
 };
 
 // Liu (eq. 2.21): linear in compression and, while bonded, in tension up to the strength F; the
@@ -55,7 +76,13 @@ struct LiuNormal {
     return u >= 0 ? linear_compression_energy(p, u) : bonded ? p.tensile_strength * -u : 0.0;
   }
   static double stiffness(const PairParams& p) { return p.kn; }
-  static void derive(PairParams& p, double /*epsilon*/) { p.break_separation = p.tensile_strength / p.kn; }  // eq. 2.21
+  static constexpr PropertyKey keys[] = {kNormalStiffnessKey, kTensileStrengthKey};
+  static void derive(PairParams& p, const PairProperties& pair) {
+    const ContactProperties& q = pair.mixed;
+    p.kn = q.kn;
+    p.tensile_strength = q.tensile_strength;
+    p.break_separation = p.tensile_strength / p.kn;  // eq. 2.21
+  }
 };
 
 // Mendes (eq. 2.22-2.25, signs as SPEC §6): linear in compression; while bonded the attraction is
@@ -80,8 +107,9 @@ struct MendesNormal {
   static double stiffness(const PairParams& p) {
     return p.mendes_tension ? std::max(p.kn, p.kn * (p.mendes_D * p.mendes_A - 1)) : p.kn;
   }
+  static constexpr PropertyKey keys[] = {kNormalStiffnessKey, kTensileStrengthKey, kMendesEpsilonKey};
   // The constants D, A, the zero s0 of T and whether there is tension at all (eq. 2.23-2.24).
-  static void derive(PairParams& p, double epsilon);
+  static void derive(PairParams& p, const PairProperties& pair);
 };
 
 }  // namespace dem

@@ -4,18 +4,36 @@
 // (Mohr-Coulomb with cohesion on bonded contacts, classic Coulomb otherwise, SPEC §6 Decision).
 // Its history is the spring force on i, a global vector (SPEC §5 Decision), kept per contact.
 //
-// A tangential sub-model has: `keyword`; `in_tangent_plane(spring, n)` (its history turned into
+// A tangential sub-model has: `keyword`; `keys` (its scene keys, contact/properties.hpp);
+// `derive(p, properties)`; `in_tangent_plane(spring, n)` (its history turned into
 // the current tangent plane); `force(p, vt, fn, bonded, dashpot, dt, spring)` (over a lane type);
 // `stored_energy(p, spring)`; `stiffness(p)` (for eq. 2.48).
+#include <cmath>
+#include <limits>
+#include <numbers>
 #include <string_view>
 
 #include "contact/pair_params.hpp"
+#include "contact/properties.hpp"
 #include "simd/lanes.hpp"
 
 namespace dem {
 
 struct CoulombSpring {
   static constexpr std::string_view keyword = "coulomb";
+  static constexpr PropertyKey keys[] = {
+      {.keyword = "kt", .number = &ContactProperties::kt, .lo = 0, .hi = std::numeric_limits<double>::infinity(), .unit = "N/m",
+       .si_unit = "N/m", .mixing = &MixingRules::stiffness, .default_key = "kn"},
+      {.keyword = "friction_angle", .number = &ContactProperties::friction_angle, .lo = 0, .hi = 90, .hi_open = true,
+       .unit = "degrees", .si_unit = "degree", .mixing = &MixingRules::friction},
+      {.keyword = "cohesion", .number = &ContactProperties::cohesion, .lo = 0, .hi = std::numeric_limits<double>::infinity(),
+       .unit = "N (C, bonded contacts)", .si_unit = "N", .mixing = &MixingRules::strength}};
+  static void derive(PairParams& p, const PairProperties& pair) {
+    const ContactProperties& q = pair.mixed;
+    p.kt = q.kt;
+    p.mu = std::tan(q.friction_angle * (std::numbers::pi / 180.0));
+    p.cohesion = q.cohesion;
+  }
 
   // The spring turned into the tangent plane of normal n, keeping its magnitude. Apart so that a
   // force loop can turn the springs of many contacts before it evaluates them: the division and

@@ -170,11 +170,12 @@ class Reader {
     if (format != kCheckpointFormat)
       throw IoError(path + ": an HDF5 file but not a dem checkpoint (attribute 'format' is \"" + format + "\", expected \"" +
                     kCheckpointFormat + "\")");
-    const int schema = int_attribute("schema_version");
-    if (schema != kCheckpointSchema)
-      throw IoError(path + ": checkpoint schema version " + std::to_string(schema) + " is not supported (this build reads version " +
-                    std::to_string(kCheckpointSchema) + ")");
+    schema_ = int_attribute("schema_version");
+    if (schema_ < kOldestReadableSchema || schema_ > kCheckpointSchema)
+      throw IoError(path + ": checkpoint schema version " + std::to_string(schema_) + " is not supported (this build reads version " +
+                    std::to_string(kOldestReadableSchema) + " to " + std::to_string(kCheckpointSchema) + ")");
   }
+  int schema() const { return schema_; }
 
   std::string string_attribute(const char* name) {
     if (H5Aexists(file_, name) <= 0) return "";
@@ -313,6 +314,7 @@ class Reader {
   std::string path_;
   Handle file_;
   hsize_t file_size_ = 0;
+  int schema_ = 0;
 };
 
 void silence_hdf5() {
@@ -392,19 +394,43 @@ void write_all(Writer& w, const Simulation& sim, const CheckpointMeta& meta) {
     w.strings("/materials/name", names);
   }
   w.doubles("/materials/density", field([](const Material& m) { return m.density; }), "kg/m^3");
-  w.doubles("/materials/kn", field([](const Material& m) { return m.kn; }), "N/m");
-  w.doubles("/materials/kt", field([](const Material& m) { return m.kt; }), "N/m");
-  w.doubles("/materials/friction_angle", field([](const Material& m) { return m.friction_angle; }), "degree");
-  w.doubles("/materials/restitution", field([](const Material& m) { return m.restitution; }), "1");
-  w.doubles("/materials/tangential_restitution", field([](const Material& m) { return m.restitution_t; }), "1");
-  w.doubles("/materials/tensile_strength", field([](const Material& m) { return m.tensile_strength; }), "N");
-  w.doubles("/materials/cohesion", field([](const Material& m) { return m.cohesion; }), "N");
-  w.doubles("/materials/epsilon", field([](const Material& m) { return m.epsilon; }), "1");
+  // Each contact property under its scene keyword (the models' keys, contact/model_table.hpp).
+  const std::vector<PropertyKey> keys = all_property_keys();
+  for (const PropertyKey& k : keys) {
+    const std::string name = "/materials/" + std::string(k.keyword);
+    if (k.flag) {
+      std::vector<int> v;
+      for (const Material& m : mats) v.push_back(m.*k.flag);
+      w.int32s(name.c_str(), v);
+    } else {
+      w.doubles(name.c_str(), field([&](const Material& m) { return m.*k.number; }), std::string(k.si_unit).c_str());
+    }
+  }
   {
-    std::vector<int> law, nva;
-    for (const Material& m : mats) law.push_back(static_cast<int>(m.law)), nva.push_back(m.no_viscous_attraction);
+    std::vector<int> law;
+    for (const Material& m : mats) law.push_back(static_cast<int>(m.law));
     w.int32s("/materials/law", law);
-    w.int32s("/materials/no_viscous_attraction", nva);
+  }
+  // [[pair]] overrides: a property a pair does not give is NaN (a flag: -1), its law -1.
+  const std::vector<PairOverride>& pairs = sim.materials.overrides();
+  w.group("/pairs");
+  {
+    std::vector<int> ab, law;
+    for (const PairOverride& o : pairs) ab.push_back(o.a), ab.push_back(o.b), law.push_back(o.law ? static_cast<int>(*o.law) : -1);
+    w.int32s("/pairs/materials", ab, {pairs.size(), 2});
+    w.int32s("/pairs/law", law);
+  }
+  for (const PropertyKey& k : keys) {
+    const std::string name = "/pairs/" + std::string(k.keyword);
+    if (k.flag) {
+      std::vector<int> v;
+      for (const PairOverride& o : pairs) v.push_back(o.gives(k.keyword) ? int{o.values.*k.flag} : -1);
+      w.int32s(name.c_str(), v);
+    } else {
+      std::vector<double> v;
+      for (const PairOverride& o : pairs) v.push_back(o.gives(k.keyword) ? o.values.*k.number : std::nan(""));
+      w.doubles(name.c_str(), v, std::string(k.si_unit).c_str());
+    }
   }
   const MixingRules& mix = sim.materials.rules();
   w.int32s("/materials/mixing", {static_cast<int>(mix.stiffness), static_cast<int>(mix.friction), static_cast<int>(mix.restitution),
@@ -563,24 +589,62 @@ void read_checkpoint(const std::string& path, Simulation& sim, CheckpointMeta& m
 
   const std::vector<std::string> names = r.strings("/materials/name");
   const long nm = static_cast<long>(names.size());
-  const std::vector<double> density = r.doubles("/materials/density", nm), kn = r.doubles("/materials/kn", nm),
-                            kt = r.doubles("/materials/kt", nm), phi = r.doubles("/materials/friction_angle", nm),
-                            eta = r.doubles("/materials/restitution", nm), eta_t = r.doubles("/materials/tangential_restitution", nm);
-  const std::vector<double> strength = r.doubles("/materials/tensile_strength", nm), cohesion = r.doubles("/materials/cohesion", nm),
-                            epsilon = r.doubles("/materials/epsilon", nm);
-  const std::vector<int> law = r.int32s("/materials/law", nm), nva = r.int32s("/materials/no_viscous_attraction", nm);
+  const std::vector<double> density = r.doubles("/materials/density", nm);
+  const std::vector<int> law = r.int32s("/materials/law", nm);
   const std::vector<int> mix = r.int32s("/materials/mixing", 4);
   std::vector<Material> mats(nm);
   for (long k = 0; k < nm; ++k) {
     if (law[k] < 0 || law[k] >= kNormalLaws) throw IoError(path + ": /materials/law holds an unknown law (damaged file)");
-    mats[k] = {names[k], density[k], kn[k], kt[k], phi[k], eta[k], eta_t[k], static_cast<NormalLaw>(law[k]),
-               strength[k], cohesion[k], epsilon[k], nva[k] != 0};
+    mats[k].name = names[k];
+    mats[k].density = density[k];
+    mats[k].law = static_cast<NormalLaw>(law[k]);
+  }
+  const auto flag_of = [&](int v, const std::string& name) {
+    if (v != 0 && v != 1) throw IoError(path + ": " + name + " holds neither 0 nor 1 (damaged file)");
+    return v == 1;
+  };
+  const std::vector<PropertyKey> keys = all_property_keys();
+  for (const PropertyKey& k : keys) {
+    const std::string name = "/materials/" + std::string(k.keyword);
+    if (k.flag) {
+      const std::vector<int> v = r.int32s(name.c_str(), nm);
+      for (long m = 0; m < nm; ++m) mats[m].*k.flag = flag_of(v[m], name);
+    } else {
+      const std::vector<double> v = r.doubles(name.c_str(), nm);
+      for (long m = 0; m < nm; ++m) mats[m].*k.number = v[m];
+    }
   }
   for (int m : mix)
     if (m < 0 || m > 3) throw IoError(path + ": /materials/mixing holds an unknown rule (damaged file)");
-  // Informational: tools rebuild the contact constants from the scene ([[pair]] entries included).
+  // [[pair]] overrides (schema 3 on; a schema 2 file did not store them).
+  std::vector<PairOverride> overrides;
+  if (r.schema() >= 3) {
+    const std::vector<int> ab = r.int32s("/pairs/materials", -1, 2), pair_law = r.int32s("/pairs/law", static_cast<long>(ab.size() / 2));
+    overrides.resize(pair_law.size());
+    for (std::size_t e = 0; e < overrides.size(); ++e) {
+      overrides[e].a = ab[2 * e], overrides[e].b = ab[2 * e + 1];
+      if (overrides[e].a < 0 || overrides[e].a >= nm || overrides[e].b < 0 || overrides[e].b >= nm)
+        throw IoError(path + ": /pairs/materials refers to a material that does not exist (damaged file)");
+      if (pair_law[e] < -1 || pair_law[e] >= kNormalLaws) throw IoError(path + ": /pairs/law holds an unknown law (damaged file)");
+      if (pair_law[e] >= 0) overrides[e].law = static_cast<NormalLaw>(pair_law[e]);
+    }
+    for (const PropertyKey& k : keys) {
+      const std::string name = "/pairs/" + std::string(k.keyword);
+      if (k.flag) {
+        const std::vector<int> v = r.int32s(name.c_str(), static_cast<long>(overrides.size()));
+        for (std::size_t e = 0; e < overrides.size(); ++e)
+          if (v[e] != -1) overrides[e].set(k.keyword, flag_of(v[e], name));
+      } else {
+        const std::vector<double> v = r.doubles(name.c_str(), static_cast<long>(overrides.size()));
+        for (std::size_t e = 0; e < overrides.size(); ++e)
+          if (!std::isnan(v[e])) overrides[e].set(k.keyword, v[e]);
+      }
+    }
+  }
+  // The contact constants as the writer's run had them; tools that have the scene rebuild them
+  // from it (and check the materials agree).
   sim.materials = MaterialTable(mats, {static_cast<MixRule>(mix[0]), static_cast<MixRule>(mix[1]), static_cast<MixRule>(mix[2]),
-                                       static_cast<MixRule>(mix[3])});
+                                       static_cast<MixRule>(mix[3])}, overrides);
   for (int m : p.material)
     if (m < 0 || m >= nm) throw IoError(path + ": /particles/material refers to a material that does not exist (damaged file)");
 

@@ -10,7 +10,10 @@
 
 namespace dem {
 
-inline constexpr int kCheckpointSchema = 2;  // 2: wall motions compose translation, time table, vibration, rotation
+// 2: wall motions compose translation, time table, vibration, rotation; 3: [[pair]] overrides
+// (/pairs), contact properties named by their models' keys.
+inline constexpr int kCheckpointSchema = 3;
+inline constexpr int kOldestReadableSchema = 2;
 inline constexpr const char* kCheckpointFormat = "dem-checkpoint";
 
 // Where a run-stage run stands, so that --restart continues exactly.

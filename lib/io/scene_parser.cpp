@@ -284,6 +284,24 @@ NormalLaw read_law(TableReader& r, const std::string* def) {
   return *normal_law_named(r.choice("law", normal_law_names(), def));  // the table's keywords
 }
 
+// One contact property by its key (contact/properties.hpp), stored in `into`; returns it.
+double read_property(TableReader& r, const PropertyKey& k, ContactProperties& into) {
+  const std::string key(k.keyword);
+  if (k.flag) return into.*k.flag = r.boolean_or(key, false);
+  return into.*k.number = r.number(key, k.lo, k.hi, std::string(k.unit).c_str(), k.lo_open, k.hi_open);
+}
+
+// A key that only other laws' models read is an error that says whose it is.
+void refuse_keys_of_other_laws(TableReader& r, NormalLaw law) {
+  const std::vector<PropertyKey> own = property_keys(law);
+  for (const PropertyKey& k : all_property_keys()) {
+    const std::string key(k.keyword);
+    if (std::any_of(own.begin(), own.end(), [&](const PropertyKey& o) { return o.keyword == k.keyword; }) || !r.has(key)) continue;
+    r.fail(key, "a property of law " + laws_reading(k.keyword) + ", not of this one (law = \"" + std::string(normal_law_name(law)) +
+                    "\")");
+  }
+}
+
 // [[pair]] materials = ["a", "b"] with any material contact key: explicit values for that pair.
 void read_pairs(TableReader& top, Scene& sc) {
   const auto list = top.tables("pair");
@@ -304,19 +322,14 @@ void read_pairs(TableReader& top, Scene& sc) {
     for (const PairOverride& x : sc.pairs)
       if ((x.a == o.a && x.b == o.b) || (x.a == o.b && x.b == o.a)) r.fail_at(&mn, "materials", "a [[pair]] for these materials is already given");
     if (r.has("law")) o.law = read_law(r, nullptr);
-    auto opt = [&](const char* key, double lo, double hi, const char* unit, bool lo_open, bool hi_open) -> std::optional<double> {
-      if (!r.has(key)) return std::nullopt;
-      return r.number(key, lo, hi, unit, lo_open, hi_open);
-    };
-    o.kn = opt("kn", 0, kInf, "N/m", true, false);
-    o.kt = opt("kt", 0, kInf, "N/m", false, false);
-    o.friction_angle = opt("friction_angle", 0, 90, "degrees", false, true);
-    o.restitution = opt("restitution", 0, 1, "(eta_n, eq. 2.29)", true, false);
-    o.restitution_t = opt("tangential_restitution", 0, 1, "(eta_t, eq. 2.29)", true, false);
-    o.tensile_strength = opt("tensile_strength", 0, kInf, "N", false, false);
-    o.cohesion = opt("cohesion", 0, kInf, "N", false, false);
-    o.epsilon = opt("epsilon", 0, 1, "(mendes law, eq. 2.23)", true, true);
-    if (r.has("no_viscous_attraction")) o.no_viscous_attraction = r.boolean_or("no_viscous_attraction", false);
+    const NormalLaw law = o.law ? *o.law : sc.materials[o.a].law;
+    refuse_keys_of_other_laws(r, law);
+    for (const PropertyKey& k : property_keys(law)) {
+      if (!r.has(std::string(k.keyword))) continue;
+      if (!k.mixing && !k.flag)
+        r.fail(std::string(k.keyword), "a property of each material, which the law combines itself: give it in the [[material]]");
+      o.set(k.keyword, read_property(r, k, o.values));
+    }
     r.finish();
     sc.pairs.push_back(o);
   }
@@ -348,15 +361,21 @@ void read_materials(TableReader& top, Scene& sc) {
     if (find_material(sc.materials, m.name) >= 0) r.fail("name", "duplicate material name");
     m.law = read_law(r, &kCundall);
     m.density = r.number("density", 0, kInf, "kg/m^3", true);
-    m.kn = r.number("kn", 0, kInf, "N/m", true);
-    m.kt = r.number_or("kt", m.kn, 0, kInf, "N/m");
-    m.friction_angle = r.number_or("friction_angle", 0.0, 0, 90, "degrees", false, true);
-    m.restitution = r.number_or("restitution", 1.0, 0, 1, "(eta_n, eq. 2.29)", true);
-    m.restitution_t = r.number_or("tangential_restitution", m.restitution, 0, 1, "(eta_t, eq. 2.29)", true);
-    m.tensile_strength = r.number_or("tensile_strength", 0.0, 0, kInf, "N (F, bonded contacts)");
-    m.cohesion = r.number_or("cohesion", 0.0, 0, kInf, "N (C, bonded contacts)");
-    m.epsilon = r.number_or("epsilon", m.epsilon, 0, 1, "(mendes law, eq. 2.23)", true, true);
-    m.no_viscous_attraction = r.boolean_or("no_viscous_attraction", false);
+    refuse_keys_of_other_laws(r, m.law);
+    const std::vector<PropertyKey> keys = property_keys(m.law);
+    for (const PropertyKey& k : keys) {
+      const std::string key(k.keyword);
+      if (r.has(key)) {
+        read_property(r, k, m);
+        continue;
+      }
+      // Omitted: its default, or an earlier key's value, or required.
+      const auto from = std::find_if(keys.begin(), keys.end(), [&](const PropertyKey& o) { return o.keyword == k.default_key; });
+      if (k.flag) m.*k.flag = k.default_value != 0;
+      else if (from != keys.end()) m.*k.number = m.*from->number;
+      else if (k.required || !k.default_key.empty()) r.required(key);
+      else m.*k.number = k.default_value;
+    }
     r.finish();
     sc.materials.push_back(m);
   }

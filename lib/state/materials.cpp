@@ -2,27 +2,32 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
+#include <stdexcept>
 
 #include "contact/model_table.hpp"
 
 namespace dem {
 
-double mix(MixRule rule, double a, double b) {
-  switch (rule) {
-    case MixRule::Harmonic: return (a + b) > 0 ? 2 * a * b / (a + b) : 0;
-    case MixRule::Min: return std::min(a, b);
-    case MixRule::Max: return std::max(a, b);
-    case MixRule::Mean: return 0.5 * (a + b);
+bool PairOverride::gives(std::string_view keyword) const {
+  return std::find(given.begin(), given.end(), keyword) != given.end();
+}
+
+void PairOverride::set(std::string_view keyword, double value) {
+  for (const PropertyKey& k : all_property_keys()) {
+    if (k.keyword != keyword) continue;
+    if (k.flag) values.*k.flag = value != 0;
+    else values.*k.number = value;
+    if (!gives(keyword)) given.emplace_back(keyword);
+    return;
   }
-  return a;
+  throw std::invalid_argument("no contact model reads a property \"" + std::string(keyword) + "\"");
 }
 
 MaterialTable::MaterialTable(std::vector<Material> materials, MixingRules rules, const std::vector<PairOverride>& overrides)
-    : materials_(std::move(materials)), rules_(rules) {
+    : materials_(std::move(materials)), rules_(rules), overrides_(overrides) {
   const std::size_t n = materials_.size();
   pairs_.resize(n * n);
-  const double deg = std::numbers::pi / 180.0;
+  const std::vector<PropertyKey> keys = all_property_keys();
   for (std::size_t a = 0; a < n; ++a)
     for (std::size_t b = 0; b < n; ++b) {
       const Material& A = materials_[a];
@@ -30,24 +35,16 @@ MaterialTable::MaterialTable(std::vector<Material> materials, MixingRules rules,
       const PairOverride* o = nullptr;
       for (const PairOverride& x : overrides)
         if ((x.a == static_cast<int>(a) && x.b == static_cast<int>(b)) || (x.a == static_cast<int>(b) && x.b == static_cast<int>(a))) o = &x;
-      auto pick = [&](const std::optional<double> PairOverride::*field, MixRule rule, double va, double vb) {
-        return (o && (o->*field)) ? *(o->*field) : mix(rule, va, vb);
-      };
-      PairParams& p = pairs_[a * n + b];
+      // Each property: the pair's own where given, else the two materials' mixed by its rule.
+      PairProperties q{A, A, B};
+      for (const PropertyKey& k : keys) {
+        const bool own = o && o->gives(k.keyword);
+        if (k.flag) q.mixed.*k.flag = own ? o->values.*k.flag : (A.*k.flag || B.*k.flag);
+        else if (own) q.mixed.*k.number = o->values.*k.number;
+        else if (k.mixing) q.mixed.*k.number = mix(rules_.*k.mixing, A.*k.number, B.*k.number);
+      }
       // Unlike laws need an explicit [[pair]] (the parser checks); like laws carry over.
-      p.law = (o && o->law) ? *o->law : A.law;
-      p.kn = pick(&PairOverride::kn, rules_.stiffness, A.kn, B.kn);
-      p.kt = pick(&PairOverride::kt, rules_.stiffness, A.kt, B.kt);
-      p.mu = std::tan(pick(&PairOverride::friction_angle, rules_.friction, A.friction_angle, B.friction_angle) * deg);
-      const double eta = pick(&PairOverride::restitution, rules_.restitution, A.restitution, B.restitution);
-      const double eta_t = pick(&PairOverride::restitution_t, rules_.restitution, A.restitution_t, B.restitution_t);
-      with_damping(p, [&](auto damping) { damping.derive(p, eta, eta_t); });
-      p.tensile_strength = pick(&PairOverride::tensile_strength, rules_.strength, A.tensile_strength, B.tensile_strength);
-      p.cohesion = pick(&PairOverride::cohesion, rules_.strength, A.cohesion, B.cohesion);
-      p.no_viscous_attraction =
-          (o && o->no_viscous_attraction) ? *o->no_viscous_attraction : (A.no_viscous_attraction || B.no_viscous_attraction);
-      const double epsilon = pick(&PairOverride::epsilon, rules_.strength, A.epsilon, B.epsilon);
-      with_normal_law(p.law, [&](auto law) { law.derive(p, epsilon); });
+      pairs_[a * n + b] = derive_pair_params((o && o->law) ? *o->law : A.law, q);
     }
 }
 
