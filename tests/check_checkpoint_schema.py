@@ -41,6 +41,8 @@ def main(path, expect_writer):
             "materials/tensile_strength": ("f", (m,), "N"), "materials/cohesion": ("f", (m,), "N"),
             "materials/epsilon": ("f", (m,), "1"), "materials/law": ("i", (m,), None),
             "materials/no_viscous_attraction": ("i", (m,), None),
+            "materials/young_modulus": ("f", (m,), "Pa"), "materials/poisson_ratio": ("f", (m,), "1"),
+            "pairs/young_modulus": ("f", (npairs,), "Pa"), "pairs/poisson_ratio": ("f", (npairs,), "1"),
             "pairs/materials": ("i", (npairs, 2), None), "pairs/law": ("i", (npairs,), None),
             "pairs/kn": ("f", (npairs,), "N/m"), "pairs/kt": ("f", (npairs,), "N/m"),
             "pairs/friction_angle": ("f", (npairs,), "degree"), "pairs/restitution": ("f", (npairs,), "1"),

@@ -54,6 +54,20 @@ std::string replace(std::string s, const std::string& from, const std::string& t
   return s.replace(pos, from.size(), to);
 }
 
+// A hertz material reads its own keys (young_modulus, poisson_ratio), kt without a default (there
+// is no kn to take it from), and its pair constants follow eq. H2 (by hand).
+TEST(SceneParser, HertzMaterialParses) {
+  const Scene s = parse_scene(replace(replace(kValid, "kn = 5.0e4", "law = \"hertz\"\nyoung_modulus = 2.0e7\npoisson_ratio = 0.25\nkt = 4.0e4"),
+                                      "restitution = 0.3", "tangential_restitution = 0.5"),
+                              "scene.toml");
+  ASSERT_EQ(s.materials[0].law, NormalLaw::Hertz);
+  EXPECT_EQ(s.materials[0].young_modulus, 2e7);
+  EXPECT_EQ(s.materials[0].kt, 4e4);
+  EXPECT_EQ(s.materials[0].restitution, 1.0);
+  const MaterialTable t(s.materials, s.mixing, s.pairs);
+  EXPECT_NEAR(t.pair(0, 0).hertz_modulus, 4.0 / 3.0 * 2e7 / (2 * (1 - 0.25 * 0.25)), 1e-6);
+}
+
 TEST(SceneParser, ValidSceneParses) {
   const Scene s = parse_scene(kValid, "scene.toml");
   ASSERT_EQ(s.materials.size(), 1u);
@@ -106,8 +120,8 @@ std::vector<BadCase> bad_cases() {
        {"material[0].restitution = 1.5", "(0, 1]"}},
       {"friction angle 90", replace(kValid, "friction_angle = 25.0", "friction_angle = 90.0"),
        {"material[0].friction_angle = 90", "[0, 90) degrees"}},
-      {"unknown contact law", replace(kValid, "density = 2500.0", "density = 2500.0\nlaw = \"hertz\""),
-       {"material[0].law = \"hertz\"", "allowed \"cundall\""}},
+      {"unknown contact law", replace(kValid, "density = 2500.0", "density = 2500.0\nlaw = \"hooke\""),
+       {"material[0].law = \"hooke\"", "allowed \"cundall\", \"liu\", \"mendes\", \"hertz\""}},
       {"no material", replace(kValid, "[[material]]\nname = \"glass\"", "[[materia]]\nname = \"glass\""),
        {"no [[material]] defined"}},
       {"duplicate material", replace(kValid, "[[wall]]", "[[material]]\nname = \"glass\"\ndensity = 1.0\nkn = 1.0\n\n[[wall]]"),
@@ -176,6 +190,20 @@ std::vector<BadCase> bad_cases() {
        {"material[0].epsilon = 1", "(0, 1)"}},
       {"negative tensile strength", replace(kValid, "density = 2500.0", "density = 2500.0\nlaw = \"liu\"\ntensile_strength = -1.0"),
        {"material[0].tensile_strength = -1", "[0, inf) N"}},
+      {"hertz without its modulus", replace(kValid, "kn = 5.0e4", "law = \"hertz\"\npoisson_ratio = 0.3\nkt = 5.0e4"),
+       {"material[0].young_modulus is missing (required)"}},
+      {"kn on a hertz material", replace(kValid, "kn = 5.0e4", "law = \"hertz\"\nyoung_modulus = 1e7\npoisson_ratio = 0.3\nkn = 5.0e4"),
+       {"material[0].kn = 50000", "a property of law cundall, liu, mendes"}},
+      {"hertz damped", replace(kValid, "kn = 5.0e4", "law = \"hertz\"\nyoung_modulus = 1e7\npoisson_ratio = 0.3\nkt = 5.0e4"),
+       {"material[0].restitution = 0.3", "the hertz law is undamped"}},
+      {"poisson ratio of 0.5", replace(kValid, "kn = 5.0e4", "law = \"hertz\"\nyoung_modulus = 1e7\npoisson_ratio = 0.5\nkt = 5.0e4"),
+       {"material[0].poisson_ratio = 0.5", "(-1, 0.5)"}},
+      {"a hertz pair with a cundall material",
+       replace(replace(kValid, "[[wall]]", "[[material]]\nname = \"rubber\"\nlaw = \"hertz\"\ndensity = 1100.0\nyoung_modulus = 1e7\n"
+                                          "poisson_ratio = 0.45\nkt = 1e4\n\n[[pair]]\nmaterials = [\"glass\", \"rubber\"]\n"
+                                          "law = \"hertz\"\n\n[[wall]]"),
+               "restitution = 0.3", "restitution = 1.0"),
+       {"pair[0].materials", "law \"hertz\" reads young_modulus of each material, and material \"glass\" (law \"cundall\") has none"}},
       {"a key only another law reads", replace(kValid, "density = 2500.0", "density = 2500.0\nepsilon = 0.01"),
        {"material[0].epsilon = 0.01", "a property of law mendes, not of this one (law = \"cundall\")"}},
       {"a pair key only another law reads",

@@ -33,7 +33,7 @@ struct ContactModel {
     const L zero(0.0);
     const Triple<L>& n = c.n;
     const L vn = dot(c.v_rel, n);  // > 0 when separating
-    const L f_el = Normal::elastic(p, c.overlap, bonded);  // clears bonded where the bond breaks
+    const L f_el = Normal::elastic(p, c.overlap, c.r_eff, bonded);  // clears bonded where the bond breaks
     const Dashpots<L> dashpot = Damping::coefficients(p, c);
     // f_n = f_el + c_n du_n/dt with du_n/dt = -vn, eq. 2.27-2.28; not clipped (SPEC §6 Decision)
     // unless the pair asks for no_viscous_attraction (unbonded contacts only).
@@ -59,7 +59,7 @@ struct ContactModel {
   }
   [[gnu::always_inline]] static ContactForce evaluate_in_plane(const PairParams& p, const ContactKinematics& c, double dt, Vec3& spring,
                                                                std::uint8_t& bonded) {
-    const LaneKinematics<double> k{lanes::triple(c.n), c.overlap, lanes::triple(c.v_rel), lanes::triple(c.w_arm), c.m_eff};
+    const LaneKinematics<double> k{lanes::triple(c.n), c.overlap, lanes::triple(c.v_rel), lanes::triple(c.w_arm), c.m_eff, c.r_eff};
     lanes::Triple<double> s = lanes::triple(spring);
     bool b = bonded != 0;
     const LaneForce<double> f = evaluate_in_plane(p, k, dt, s, b);

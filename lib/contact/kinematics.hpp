@@ -13,6 +13,7 @@ struct ContactKinematics {
   Vec3 v_rel;      // v_j - v_i at the centres (wall: wall velocity - v_i)
   Vec3 w_arm;      // a_j w_j + a_i w_i (wall: a_i w_i), for eq. 2.12
   double m_eff;    // m_i m_j / (m_i + m_j), wall: m_i
+  double r_eff;    // R* = a_i a_j / (a_i + a_j), wall: a_i (a law that needs it: hertz)
 };
 
 struct ContactForce {
@@ -29,6 +30,7 @@ struct LaneKinematics {
   L overlap;
   lanes::Triple<L> v_rel, w_arm;
   L m_eff;
+  L r_eff;
 };
 template <class L>
 struct LaneForce {

@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 #include "contact/damping.hpp"
@@ -38,6 +39,12 @@ struct ModelTable {
       if (name(c) == keyword) return c;
     return std::nullopt;
   }
+  template <class M>
+  static constexpr int code_of() {
+    int code = 0, found = -1;
+    ((std::is_same_v<M, Models> ? found = code : 0, ++code), ...);
+    return found;
+  }
   static std::vector<std::string> names() {
     std::vector<std::string> all;
     for (int c = 0; c < size; ++c) all.emplace_back(name(c));
@@ -54,7 +61,7 @@ struct ModelTable {
 };
 
 // Elastic normal laws, in the order of NormalLaw's codes.
-using NormalLaws = ModelTable<CundallNormal, LiuNormal, MendesNormal>;
+using NormalLaws = ModelTable<CundallNormal, LiuNormal, MendesNormal, HertzNormal>;
 using Dampings = ModelTable<ViscousDamping>;
 using TangentialLaws = ModelTable<CoulombSpring>;
 
@@ -71,12 +78,16 @@ inline std::optional<NormalLaw> normal_law_named(std::string_view keyword) {
   return c ? std::optional<NormalLaw>(static_cast<NormalLaw>(*c)) : std::nullopt;
 }
 inline std::vector<std::string> normal_law_names() { return NormalLaws::names(); }
+// The law `law` acts as while no contact is bonded.
+inline NormalLaw law_without_bonds(NormalLaw law) {
+  return with_normal_law(law, [](auto m) { return static_cast<NormalLaw>(NormalLaws::code_of<typename decltype(m)::WithoutBonds>()); });
+}
 
 // A scene whose material pairs use different laws: the law of each contact's pair, per contact.
 struct MixedNormal {
   static constexpr bool four_wide = false;
-  static double elastic(const PairParams& p, double u, bool& bonded) {
-    return with_normal_law(p.law, [&](auto law) { return decltype(law)::elastic(p, u, bonded); });
+  static double elastic(const PairParams& p, double u, double r_eff, bool& bonded) {
+    return with_normal_law(p.law, [&](auto law) { return decltype(law)::elastic(p, u, r_eff, bonded); });
   }
 };
 
@@ -119,6 +130,15 @@ inline PairParams derive_pair_params(NormalLaw law, const PairProperties& q) {
   TangentialLaws::with(0, [&](auto m) { m.derive(p, q); });
   Dampings::with(0, [&](auto m) { m.derive(p, q); });
   return p;
+}
+
+// Why the models of law `law` cannot take `value` for `keyword` yet (a model may refuse a value
+// it cannot honour: `refuses`), or empty.
+inline std::string_view refused_property(NormalLaw law, std::string_view keyword, double value) {
+  return with_normal_law(law, [&](auto m) -> std::string_view {
+    if constexpr (requires { decltype(m)::refuses(keyword, value); }) return decltype(m)::refuses(keyword, value);
+    return {};
+  });
 }
 
 // The damping and tangential models of a pair (one of each today, so every pair shares them; a

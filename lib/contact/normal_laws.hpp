@@ -6,6 +6,9 @@
 // repulsive. `bonded` is the contact's bond flag Φ; a law clears it when the bond fails in this
 // step (irreversible, SPEC §6 Decision).
 //
+// `WithoutBonds` is the law it acts as exactly while no contact of the scene is bonded (the force
+// loop then runs that one: liu and mendes run the four-wide cundall code).
+//
 // Each law lists the scene keys it reads (`keys`, contact/properties.hpp) and derives its
 // constants from them (`derive`).
 //
@@ -43,12 +46,13 @@ inline double linear_compression_energy(const PairParams& p, double u) { return 
 struct CundallNormal {
   static constexpr std::string_view keyword = "cundall";
   static constexpr bool four_wide = true;
+  using WithoutBonds = CundallNormal;  // the law it acts as while no contact is bonded
   template <class P, class L, class M>
-  [[gnu::always_inline]] static L elastic(const P& p, const L& u, M& /*bonded*/) {
+  [[gnu::always_inline]] static L elastic(const P& p, const L& u, const L& /*r_eff*/, M& /*bonded*/) {
     return lanes::only_where(lanes::less(L(0.0), u), p.kn * u);
   }
-  static double stored_energy(const PairParams& p, double u, bool /*bonded*/) { return linear_compression_energy(p, u); }
-  static double stiffness(const PairParams& p) { return p.kn; }
+  static double stored_energy(const PairParams& p, double u, double /*r_eff*/, bool /*bonded*/) { return linear_compression_energy(p, u); }
+  static double stiffness(const PairParams& p, const ContactScale& /*scale*/) { return p.kn; }
   static constexpr PropertyKey keys[] = {kNormalStiffnessKey};
   static void derive(PairParams& p, const PairProperties& pair) {
     const ContactProperties& q = pair.mixed;
@@ -62,7 +66,8 @@ struct CundallNormal {
 struct LiuNormal {
   static constexpr std::string_view keyword = "liu";
   static constexpr bool four_wide = false;
-  static double elastic(const PairParams& p, double u, bool& bonded) {
+  using WithoutBonds = CundallNormal;  // its tension needs a bond
+  static double elastic(const PairParams& p, double u, double /*r_eff*/, bool& bonded) {
     if (u >= 0) return p.kn * u;
     if (!bonded) return 0.0;
     if (-p.kn * u > p.tensile_strength) {
@@ -72,10 +77,10 @@ struct LiuNormal {
     return p.kn * u;
   }
   // A bonded pair held in tension s stores at most F s (the attraction never exceeds F).
-  static double stored_energy(const PairParams& p, double u, bool bonded) {
+  static double stored_energy(const PairParams& p, double u, double /*r_eff*/, bool bonded) {
     return u >= 0 ? linear_compression_energy(p, u) : bonded ? p.tensile_strength * -u : 0.0;
   }
-  static double stiffness(const PairParams& p) { return p.kn; }
+  static double stiffness(const PairParams& p, const ContactScale& /*scale*/) { return p.kn; }
   static constexpr PropertyKey keys[] = {kNormalStiffnessKey, kTensileStrengthKey};
   static void derive(PairParams& p, const PairProperties& pair) {
     const ContactProperties& q = pair.mixed;
@@ -91,7 +96,8 @@ struct LiuNormal {
 struct MendesNormal {
   static constexpr std::string_view keyword = "mendes";
   static constexpr bool four_wide = false;
-  static double elastic(const PairParams& p, double u, bool& bonded) {
+  using WithoutBonds = CundallNormal;  // its tension needs a bond
+  static double elastic(const PairParams& p, double u, double /*r_eff*/, bool& bonded) {
     if (u >= 0) return p.kn * u;
     if (!bonded || !p.mendes_tension) return 0.0;
     const double s = -u;
@@ -101,15 +107,56 @@ struct MendesNormal {
     }
     return -p.kn * (p.mendes_D * (1 - std::exp(-p.mendes_A * s)) - s);
   }
-  static double stored_energy(const PairParams& p, double u, bool bonded) { return LiuNormal::stored_energy(p, u, bonded); }
+  static double stored_energy(const PairParams& p, double u, double r_eff, bool bonded) { return LiuNormal::stored_energy(p, u, r_eff, bonded); }
   // The attraction starts with slope T'(0) = kn (D A - 1) = kn (L - 1), steeper than kn for
   // eps < 1/e^2 (8.2 kn at eps = 1e-4): eq. 2.48 must see it.
-  static double stiffness(const PairParams& p) {
+  static double stiffness(const PairParams& p, const ContactScale& /*scale*/) {
     return p.mendes_tension ? std::max(p.kn, p.kn * (p.mendes_D * p.mendes_A - 1)) : p.kn;
   }
   static constexpr PropertyKey keys[] = {kNormalStiffnessKey, kTensileStrengthKey, kMendesEpsilonKey};
   // The constants D, A, the zero s0 of T and whether there is tension at all (eq. 2.23-2.24).
   static void derive(PairParams& p, const PairProperties& pair);
+};
+
+// Hertz (elastic spheres, the normal part of Hertz-Mindlin; docs/contact-laws.md eq. H1-H4):
+// f = 4/3 E* sqrt(R*) u^(3/2) in compression, none in tension, with the pair's effective modulus
+// 1/E* = (1 - nu_a^2)/E_a + (1 - nu_b^2)/E_b (eq. H2) and the contact's effective radius
+// 1/R* = 1/a_i + 1/a_j (a wall: R* = a_i), eq. H3. Undamped: its damping (Tsuji's, whose
+// coefficient grows with the contact radius) is still to come, so it refuses restitution < 1.
+struct HertzNormal {
+  static constexpr std::string_view keyword = "hertz";
+  static constexpr bool four_wide = false;
+  using WithoutBonds = HertzNormal;
+  static double elastic(const PairParams& p, double u, double r_eff, bool& /*bonded*/) {
+    return u > 0 ? p.hertz_modulus * std::sqrt(r_eff * u) * u : 0.0;  // eq. H1, hertz_modulus = 4/3 E*
+  }
+  // The work of eq. H1 from first touch: 2/5 f u = 8/15 E* sqrt(R*) u^(5/2) (eq. H4).
+  static double stored_energy(const PairParams& p, double u, double r_eff, bool /*bonded*/) {
+    return u > 0 ? 0.4 * p.hertz_modulus * std::sqrt(r_eff * u) * u * u : 0.0;
+  }
+  // The slope df/du = 2 E* sqrt(R* u) grows with the overlap: bounded at the largest effective
+  // radius and overlap a run reaches before its overlap check stops it.
+  static double stiffness(const PairParams& p, const ContactScale& scale) {
+    return 1.5 * p.hertz_modulus * std::sqrt(scale.radius * scale.overlap);
+  }
+  static constexpr PropertyKey keys[] = {
+      {.keyword = "young_modulus", .number = &ContactProperties::young_modulus, .lo = 0,
+       .hi = std::numeric_limits<double>::infinity(), .lo_open = true, .unit = "Pa", .si_unit = "Pa", .required = true},
+      {.keyword = "poisson_ratio", .number = &ContactProperties::poisson_ratio, .lo = -1, .hi = 0.5, .lo_open = true,
+       .hi_open = true, .unit = "(dimensionless)", .si_unit = "1", .required = true}};
+  static void derive(PairParams& p, const PairProperties& pair) {
+    const auto compliance = [](const ContactProperties& m) { return (1 - m.poisson_ratio * m.poisson_ratio) / m.young_modulus; };
+    p.hertz_modulus = 4.0 / 3.0 / (compliance(pair.a) + compliance(pair.b));  // eq. H2
+    p.kn = 0;  // no linear spring: the viscous dashpot, which reads it, is off (restitution 1)
+    p.break_separation = 0;
+  }
+  // A value this law cannot honour yet, with the reason; empty when fine.
+  static std::string_view refuses(std::string_view keyword, double value) {
+    if (keyword == "restitution" && value < 1)
+      return "the hertz law is undamped until its damping (Tsuji) is written: give restitution = 1 (tangential_restitution may be "
+             "below 1)";
+    return {};
+  }
 };
 
 }  // namespace dem

@@ -5,8 +5,9 @@ namespace dem {
 
 // Elastic normal law of a material pair (SPEC §6), a code per entry of the table in
 // model_table.hpp (checkpoints store it): `cundall` has no tension; `liu` (eq. 2.21) and
-// `mendes` (eq. 2.22-2.25) carry tension on bonded contacts only.
-enum class NormalLaw { Cundall, Liu, Mendes };
+// `mendes` (eq. 2.22-2.25) carry tension on bonded contacts only; `hertz` (docs/contact-laws.md
+// eq. H1) grows as u^(3/2).
+enum class NormalLaw { Cundall, Liu, Mendes, Hertz };
 
 // Contact constants of one material pair, derived once (STYLE: a law's constants are precomputed).
 struct PairParams {
@@ -25,6 +26,14 @@ struct PairParams {
   bool mendes_tension = false;  // false for epsilon >= 1/e: no tension at all
   double mendes_D = 0, mendes_A = 0;
   double break_separation = 0;  // separation s at which a bond breaks: F/kn (liu), s0 (mendes), 0
+  double hertz_modulus = 0;     // 4/3 E* [Pa] (hertz, eq. H1-H2)
+};
+
+// The sizes a stiffness bound (eq. 2.48) may depend on: a law whose slope grows with the overlap
+// (hertz) is bounded where a run would stop.
+struct ContactScale {
+  double radius = 0;   // the largest effective radius R* [m] (a wall contact: the largest radius)
+  double overlap = 0;  // the largest overlap [m] the run's overlap check lets pass
 };
 
 }  // namespace dem

@@ -38,6 +38,8 @@ struct ContactProperties {
   double tensile_strength = 0;  // F [N], bonded contacts (liu, mendes)
   double cohesion = 0;          // C [N], bonded contacts (failure surface, fig. 2.13)
   double epsilon = 1e-4;        // mendes law shape parameter, (0, 1)
+  double young_modulus = 0;     // E [Pa] (hertz)
+  double poisson_ratio = 0;     // nu (hertz)
   bool no_viscous_attraction = false;  // clip the total normal force of unbonded contacts at zero
 };
 

@@ -55,7 +55,7 @@ ServoGroup servo_group(const std::vector<Wall>& walls, double t, const std::stri
 }
 
 void servo_constants(const Simulation& sim, double& k_max, double& c_max) {
-  k_max = sim.materials.max_stiffness();
+  k_max = sim.materials.max_stiffness(sim.contact_scale());
   double m_max = 0;
   for (double m : sim.particles.mass) m_max = std::max(m_max, m);
   c_max = 0;  // the largest normal dashpot against the heaviest particle (wall: m* = m_i)

@@ -284,11 +284,14 @@ NormalLaw read_law(TableReader& r, const std::string* def) {
   return *normal_law_named(r.choice("law", normal_law_names(), def));  // the table's keywords
 }
 
-// One contact property by its key (contact/properties.hpp), stored in `into`; returns it.
-double read_property(TableReader& r, const PropertyKey& k, ContactProperties& into) {
+// One contact property by its key (contact/properties.hpp), stored in `into`; returns it. A value
+// the models of `law` cannot honour is an error with their reason.
+double read_property(TableReader& r, NormalLaw law, const PropertyKey& k, ContactProperties& into) {
   const std::string key(k.keyword);
   if (k.flag) return into.*k.flag = r.boolean_or(key, false);
-  return into.*k.number = r.number(key, k.lo, k.hi, std::string(k.unit).c_str(), k.lo_open, k.hi_open);
+  const double v = into.*k.number = r.number(key, k.lo, k.hi, std::string(k.unit).c_str(), k.lo_open, k.hi_open);
+  if (const std::string_view why = refused_property(law, k.keyword, v); !why.empty()) r.fail(key, std::string(why));
+  return v;
 }
 
 // A key that only other laws' models read is an error that says whose it is.
@@ -324,11 +327,18 @@ void read_pairs(TableReader& top, Scene& sc) {
     if (r.has("law")) o.law = read_law(r, nullptr);
     const NormalLaw law = o.law ? *o.law : sc.materials[o.a].law;
     refuse_keys_of_other_laws(r, law);
+    // A law that reads a property of each material (not mixed) joins only materials that give it.
+    for (const PropertyKey& k : property_keys(law))
+      for (const int side : {o.a, o.b})
+        if (!k.mixing && !k.flag && sc.materials[side].law != law)
+          r.fail_at(&mn, "materials", "law \"" + std::string(normal_law_name(law)) + "\" reads " + std::string(k.keyword) +
+                                          " of each material, and material \"" + sc.materials[side].name + "\" (law \"" +
+                                          std::string(normal_law_name(sc.materials[side].law)) + "\") has none");
     for (const PropertyKey& k : property_keys(law)) {
       if (!r.has(std::string(k.keyword))) continue;
       if (!k.mixing && !k.flag)
         r.fail(std::string(k.keyword), "a property of each material, which the law combines itself: give it in the [[material]]");
-      o.set(k.keyword, read_property(r, k, o.values));
+      o.set(k.keyword, read_property(r, law, k, o.values));
     }
     r.finish();
     sc.pairs.push_back(o);
@@ -366,7 +376,7 @@ void read_materials(TableReader& top, Scene& sc) {
     for (const PropertyKey& k : keys) {
       const std::string key(k.keyword);
       if (r.has(key)) {
-        read_property(r, k, m);
+        read_property(r, m.law, k, m);
         continue;
       }
       // Omitted: its default, or an earlier key's value, or required.
@@ -375,6 +385,9 @@ void read_materials(TableReader& top, Scene& sc) {
       else if (from != keys.end()) m.*k.number = m.*from->number;
       else if (k.required || !k.default_key.empty()) r.required(key);
       else m.*k.number = k.default_value;
+      if (!k.flag && !r.has(key))
+        if (const std::string_view why = refused_property(m.law, k.keyword, m.*k.number); !why.empty())
+          r.fail("law", std::string(why) + " (" + key + " defaults to " + std::to_string(m.*k.number) + ")");
     }
     r.finish();
     sc.materials.push_back(m);

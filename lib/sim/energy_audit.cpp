@@ -33,8 +33,8 @@ MechanicalEnergy mechanical_energy(const Particles& p, const Vec3& gravity, cons
 namespace {
 
 // Normal part of the bound for overlap u (> 0 compression) of a pair with constants q: its law's.
-double normal_energy_bound(const PairParams& q, double u, bool bonded) {
-  return with_normal_law(q.law, [&](auto law) { return law.stored_energy(q, u, bonded); });
+double normal_energy_bound(const PairParams& q, double u, double r_eff, bool bonded) {
+  return with_normal_law(q.law, [&](auto law) { return law.stored_energy(q, u, r_eff, bonded); });
 }
 
 double spring_energy(const PairParams& q, const Vec3& spring) {
@@ -52,14 +52,15 @@ double stored_energy_bound(const Particles& p, const MaterialTable& materials, c
     const int i = pairs.slot_i[k], j = pairs.slot_j[k];
     const PairParams& q = materials.pair(p.material[i], p.material[j]);
     const double u = p.radius[i] + p.radius[j] - separation(p, box, i, j).norm();
-    e += normal_energy_bound(q, u, pairs.bonded[k]) + spring_energy(q, pairs.spring[k]);
+    const double r_eff = p.radius[i] * p.radius[j] / (p.radius[i] + p.radius[j]);
+    e += normal_energy_bound(q, u, r_eff, pairs.bonded[k]) + spring_energy(q, pairs.spring[k]);
   }
   for (std::size_t k = 0; k < wall_contacts.size(); ++k) {
     if (!wall_contacts.active[k]) continue;
     const int i = wall_contacts.slot_i[k], w = wall_contacts.slot_j[k];
     const PairParams& q = materials.pair(p.material[i], walls[w].material);
     const double u = p.radius[i] - (closest_point(geometry[w], p.x[i]) - p.x[i]).norm();
-    e += normal_energy_bound(q, u, wall_contacts.bonded[k]) + spring_energy(q, wall_contacts.spring[k]);
+    e += normal_energy_bound(q, u, p.radius[i], wall_contacts.bonded[k]) + spring_energy(q, wall_contacts.spring[k]);
   }
   return e;
 }

@@ -78,6 +78,7 @@ double pair_chunk(const ChunkInput& chunk, long first, long last) {
     c.v_rel = a.v[j] - a.v[i];
     c.w_arm = a.radius[j] * a.w[j] + a.radius[i] * a.w[i];
     c.m_eff = effective_mass(a.mass[i], a.mass[j], Fixed && a.fixed[i], Fixed && a.fixed[j]);
+    c.r_eff = a.radius[i] * a.radius[j] / (a.radius[i] + a.radius[j]);  // eq. H3
   }
   for (int e = 0; e < m; ++e) {
     const long k = contact[e];
@@ -167,6 +168,7 @@ double wall_run(const ForceLoopInput& in, ContactList& wc, ForceBlocks& out, lon
     c.v_rel = g.velocity_of(p.x[i] + to_wall[e]) - p.v[i];
     c.w_arm = p.radius[i] * p.w[i];
     c.m_eff = p.mass[i];
+    c.r_eff = p.radius[i];  // a wall: infinite radius, eq. H3
     const ContactForce f = ContactModel<Normal>::evaluate(in.materials.pair(p.material[i], in.walls[wc.slot_j[k]].material), c,
                                                         in.dt, wc.spring[k], wc.bonded[k]);
     const Vec3 torque_per_radius = c.n.cross(f.tangential);
@@ -360,10 +362,7 @@ void select_wall_contacts(const Vec3* to_wall, const std::uint8_t* touching, int
   }
 }
 
-ForceVariant choose_force_variant(const Simulation& sim) {
-  if (!sim.has_bonds()) return NormalLaw::Cundall;
-  return sim.materials.common_law();
-}
+ForceVariant choose_force_variant(const Simulation& sim) { return sim.materials.common_law(sim.has_bonds()); }
 
 std::string variant_name(ForceVariant v) { return v ? std::string(normal_law_name(*v)) : "mixed"; }
 

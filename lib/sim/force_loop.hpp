@@ -70,8 +70,8 @@ struct ForceBlocks {
 void set_lagging_thread_for_tests(int thread, int microseconds);
 
 // Which instantiation of the force loop runs: the law every pair shares (contact/model_table.hpp;
-// also cundall for any law while no contact is bonded: without bonds liu and mendes act exactly as
-// cundall), or none: the law chosen per contact ("mixed").
+// while no contact is bonded, the law each acts as then: liu and mendes act exactly as cundall),
+// or none: the law chosen per contact ("mixed").
 using ForceVariant = std::optional<NormalLaw>;
 ForceVariant choose_force_variant(const Simulation& sim);
 std::string variant_name(ForceVariant v);

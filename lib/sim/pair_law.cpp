@@ -119,6 +119,7 @@ template <bool Fixed, bool Bonds>
     c.w_arm = rj * load_four(a.w, jl) + ri * load_four(a.w, il);
     const Lanes4 mi = gather(a.mass, i), mj = gather(a.mass, j);
     c.m_eff = (mi * mj) / (mi + mj);
+    c.r_eff = (ri * rj) / (ri + rj);  // eq. H3 (the Cundall law reads none: compiled away)
     if constexpr (Fixed) {  // effective_mass: against a held particle, the other's mass
       const std::uint8_t* held = a.fixed;
       c.m_eff = lanes::select(lanes::mask4(held[il[0]], held[il[1]], held[il[2]], held[il[3]]), mj,

@@ -417,9 +417,15 @@ void Simulation::report_energy_gain() const {
 double Simulation::critical_time_step() const {
   double mmin = std::numeric_limits<double>::infinity();
   for (double m : particles.mass) mmin = std::min(mmin, m);
-  const double kmax = materials.max_stiffness();
+  const double kmax = materials.max_stiffness(contact_scale());
   if (!(kmax > 0) || !std::isfinite(mmin)) return std::numeric_limits<double>::infinity();
   return 2 * std::sqrt(mmin / (2 * kmax));  // eq. 2.48 (Hart et al.), without FRAC
+}
+
+ContactScale Simulation::contact_scale() const {
+  double r_max = 0;
+  for (double r : particles.radius) r_max = std::max(r_max, r);
+  return {r_max, params.max_overlap * r_max};  // the check stops a run past max_overlap x the smaller radius
 }
 
 double Simulation::kinetic_energy() const { return mechanical_energy(particles, params.gravity, periodic).kinetic; }

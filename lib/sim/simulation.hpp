@@ -107,6 +107,8 @@ class Simulation {
 
   // Critical time step of eq. 2.48 (without FRAC): 2 sqrt(M_min / (2 K_max)).
   double critical_time_step() const;
+  // The largest radius and overlap of this run's contacts, for a stiffness that grows with them.
+  ContactScale contact_scale() const;
 
   double skin() const;  // the neighbour-list skin in use [m]
   std::int64_t neighbour_builds() const { return neighbours_.builds(); }

@@ -54,10 +54,10 @@ int MaterialTable::index_of(const std::string& name) const {
   return -1;
 }
 
-double MaterialTable::max_stiffness() const {
+double MaterialTable::max_stiffness(const ContactScale& scale) const {
   double k = 0;
   for (const PairParams& p : pairs_) {
-    k = std::max({k, with_normal_law(p.law, [&](auto law) { return law.stiffness(p); }),
+    k = std::max({k, with_normal_law(p.law, [&](auto law) { return law.stiffness(p, scale); }),
                   with_tangential_law(p, [&](auto law) { return law.stiffness(p); })});
   }
   return k;
@@ -69,11 +69,12 @@ double MaterialTable::max_break_separation() const {
   return s;
 }
 
-std::optional<NormalLaw> MaterialTable::common_law() const {
+std::optional<NormalLaw> MaterialTable::common_law(bool bonds) const {
   if (pairs_.empty()) return NormalLaw::Cundall;
+  const auto law = [&](const PairParams& p) { return bonds ? p.law : law_without_bonds(p.law); };
   for (const PairParams& p : pairs_)
-    if (p.law != pairs_[0].law) return std::nullopt;
-  return pairs_[0].law;
+    if (law(p) != law(pairs_[0])) return std::nullopt;
+  return law(pairs_[0]);
 }
 
 }  // namespace dem

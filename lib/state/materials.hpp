@@ -41,10 +41,12 @@ class MaterialTable {
   std::size_t size() const { return materials_.size(); }
   const PairParams& pair(int a, int b) const { return pairs_[a * materials_.size() + b]; }
   int index_of(const std::string& name) const;  // -1 if absent
-  double max_stiffness() const;                 // K_max of eq. 2.48 (incl. the mendes tensile slope)
+  // K_max of eq. 2.48 (incl. the mendes tensile slope; hertz's at the scale's radius and overlap).
+  double max_stiffness(const ContactScale& scale) const;
   double max_break_separation() const;          // how far apart a bonded pair can still hold
-  // The law all pairs share, or nullopt when the scene mixes laws.
-  std::optional<NormalLaw> common_law() const;
+  // The law all pairs share, or nullopt when the scene mixes laws; without `bonds`, the law each
+  // acts as while no contact is bonded.
+  std::optional<NormalLaw> common_law(bool bonds) const;
 
  private:
   std::vector<Material> materials_;
