@@ -8,7 +8,8 @@
 
 namespace dem {
 
-MechanicalEnergy mechanical_energy(const Particles& p, const Vec3& gravity, const PeriodicBox& box) {
+MechanicalEnergy mechanical_energy(const Particles& p, const Vec3& gravity, const PeriodicBox& box,
+                                   const std::vector<std::size_t>* order) {
   // Blocks of a fixed size summed in parallel, then the blocks' sums in order: the same bits for
   // any thread count. Small enough that two threads share 10^4 particles evenly (blocks of 4,096:
   // one thread summed two of the three, and the audit took as long as on one thread).
@@ -19,7 +20,8 @@ MechanicalEnergy mechanical_energy(const Particles& p, const Vec3& gravity, cons
 #pragma omp parallel for schedule(static)
   for (long b = 0; b < blocks; ++b) {
     MechanicalEnergy& e = part[b];
-    for (long k = b * kBlock; k < std::min(n, (b + 1) * kBlock); ++k) {
+    for (long q = b * kBlock; q < std::min(n, (b + 1) * kBlock); ++q) {
+      const std::size_t k = order ? (*order)[q] : static_cast<std::size_t>(q);
       double rotational;
       e.kinetic += kinetic_energy_of(p, k, rotational);
       e.potential -= p.mass[k] * gravity.dot(box.unwrapped(p.x[k], p.image[k]));

@@ -22,13 +22,17 @@ namespace dem {
 
 // Kinetic (translational + rotational) and gravitational potential energy -Σ m g·x [J] (x
 // unwrapped across periodic boundaries: flowing down a periodic chute releases energy), summed in
-// blocks of storage slots in parallel, then block by block (the same bits for any thread count).
+// blocks in parallel, then block by block (the same bits for any thread count). The blocks follow
+// `order` (a list of slots, e.g. Particles::slots_by_id: the same bits for any storage order) or,
+// without it, the storage slots: the energy check, which only decides whether a run stops as
+// unstable, takes that cheaper sum every few steps.
 struct MechanicalEnergy {
   double kinetic = 0;
   double potential = 0;
   double total() const { return kinetic + potential; }
 };
-MechanicalEnergy mechanical_energy(const Particles& p, const Vec3& gravity, const PeriodicBox& box);
+MechanicalEnergy mechanical_energy(const Particles& p, const Vec3& gravity, const PeriodicBox& box,
+                                   const std::vector<std::size_t>* order = nullptr);
 // Kinetic energy of particle k, translational + rotational ½ I ω² (the second part in `rotational`).
 inline double kinetic_energy_of(const Particles& p, std::size_t k, double& rotational) {
   rotational = 0.5 * p.inertia(k) * p.w[k].squaredNorm();

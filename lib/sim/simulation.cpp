@@ -428,7 +428,10 @@ ContactScale Simulation::contact_scale() const {
   return {r_max, params.max_overlap * r_max};  // the check stops a run past max_overlap x the smaller radius
 }
 
-double Simulation::kinetic_energy() const { return mechanical_energy(particles, params.gravity, periodic).kinetic; }
+double Simulation::kinetic_energy() const {
+  const std::vector<std::size_t> by_id = particles.slots_by_id();  // a settle check stops on it: no bit may hang on storage order
+  return mechanical_energy(particles, params.gravity, periodic, &by_id).kinetic;
+}
 
 // Reads the candidates directly (no compaction: the stress servo calls it every step). key_j (the
 // wall index) is valid even before the first step after a restart, when slots are not: torques,

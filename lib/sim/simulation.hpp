@@ -113,7 +113,7 @@ class Simulation {
   double skin() const;  // the neighbour-list skin in use [m]
   std::int64_t neighbour_builds() const { return neighbours_.builds(); }
 
-  double kinetic_energy() const;  // translational + rotational [J]
+  double kinetic_energy() const;  // translational + rotational [J], summed in id order
   // The energy balance of the unstable-run check since its reference step (the first step, or the
   // first after set_contacts or a change in the particle count); updated every
   // kEnergyCheckEvery steps while params.max_energy_gain > 0.
