@@ -330,175 +330,316 @@ void fsync_path(const std::string& path) {
   if (rc != 0) throw IoError(path + ": fsync failed (disk full or file system error?)");
 }
 
+// The datasets of each component are listed once, in a function over an `Io` that either stores
+// them (Store, writing) or loads them back into the same variables (Load, reading, which checks
+// each extent). What a list cannot express (flattening, validation) sits beside it.
+
+class Store {
+ public:
+  explicit Store(Writer& w) : w_(w) {}
+  bool has(const char*) const { return true; }  // a writer writes every dataset
+  void group(const char* name) { w_.group(name); }
+  void scalar(const char* name, double v, const char* units) { w_.scalar(name, v, units); }
+  void scalar(const char* name, std::int64_t v) { w_.scalar(name, v); }
+  void text(const char* name, const std::string& v) { w_.strings(name, {v}); }
+  void strings(const char* name, const std::vector<std::string>& v, long /*rows*/) { w_.strings(name, v); }
+  void doubles(const char* name, const std::vector<double>& v, const char* units, long /*rows*/ = -1) { w_.doubles(name, v, units); }
+  void vec3s(const char* name, const std::vector<Vec3>& v, const char* units, long /*rows*/ = -1) { w_.vec3s(name, v, units); }
+  void int32s(const char* name, const std::vector<int>& v, long /*rows*/ = -1, long cols = 0) {
+    cols ? w_.int32s(name, v, {v.size() / cols, static_cast<hsize_t>(cols)}) : w_.int32s(name, v);
+  }
+  void int64s(const char* name, const std::vector<std::int64_t>& v, long /*rows*/ = -1, long cols = 0) {
+    cols ? w_.int64s(name, v, {v.size() / cols, static_cast<hsize_t>(cols)}) : w_.int64s(name, v);
+  }
+  void uint8s(const char* name, const std::vector<std::uint8_t>& v, long /*rows*/ = -1) { w_.uint8s(name, v); }
+  void doubles_shaped(const char* name, const std::vector<double>& v, const std::vector<long>& dims, const char* units) {
+    std::vector<hsize_t> d;
+    for (long x : dims) d.push_back(static_cast<hsize_t>(x < 0 ? v.size() / 4 : x));  // -1: rows of four (a table)
+    w_.array(name, H5T_NATIVE_DOUBLE, v.data(), d, units);
+  }
+
+ private:
+  Writer& w_;
+};
+
+class Load {
+ public:
+  explicit Load(Reader& r) : r_(r) {}
+  bool has(const char* name) { return r_.has(name); }
+  void group(const char*) {}
+  void scalar(const char* name, double& v, const char*) { v = r_.scalar(name); }
+  void scalar(const char* name, std::int64_t& v) { v = r_.scalar_int(name); }
+  void text(const char* name, std::string& v) { v = r_.strings(name, 1)[0]; }
+  void strings(const char* name, std::vector<std::string>& v, long rows) { v = r_.strings(name, rows); }
+  void doubles(const char* name, std::vector<double>& v, const char*, long rows = -1) { v = r_.doubles(name, rows); }
+  void vec3s(const char* name, std::vector<Vec3>& v, const char*, long rows = -1) { v = r_.vec3s(name, rows); }
+  void int32s(const char* name, std::vector<int>& v, long rows = -1, long cols = 0) { v = r_.int32s(name, rows, cols); }
+  void int64s(const char* name, std::vector<std::int64_t>& v, long rows = -1, long cols = 0) { v = r_.int64s(name, rows, cols); }
+  void uint8s(const char* name, std::vector<std::uint8_t>& v, long rows = -1) { v = r_.uint8s(name, rows); }
+  void doubles_shaped(const char* name, std::vector<double>& v, const std::vector<long>& dims, const char*) {
+    v = r_.values<double>(name, H5T_NATIVE_DOUBLE, dims);
+  }
+
+ private:
+  Reader& r_;
+};
+
+// Fields the lists store in a form of their own, flattened or packed.
+struct StateArrays {
+  std::vector<Vec3> gravity, periodic_lo, periodic_hi;  // one row each
+  std::vector<int> periodic;                            // 0/1 per axis
+};
+struct ParticleArrays {
+  std::vector<int> image;  // (N, 3)
+};
+struct MaterialArrays {
+  std::vector<std::string> name;
+  std::vector<double> density;
+  std::vector<int> law, mixing;
+  std::vector<std::vector<double>> number;  // per key of all_property_keys() (flags: empty)
+  std::vector<std::vector<int>> flag;       // per key (numbers: empty)
+};
+struct PairArrays {
+  std::vector<int> materials, law;
+  std::vector<std::vector<double>> number;  // per key; NaN: not given
+  std::vector<std::vector<int>> flag;       // per key; -1: not given
+};
+struct ContactArrays {
+  std::vector<std::int64_t> ids;  // (C, 2)
+  std::vector<Vec3> spring;
+  std::vector<std::uint8_t> bonded;
+};
+struct WallArrays {
+  std::vector<std::string> name;
+  std::vector<int> material, vertex_count, table, table_start;
+  std::vector<double> base, current, table_rows;  // (W, 4, 3), (W, 4, 3), (R, 4)
+  std::vector<Vec3> velocity, direction, centre, axis;
+  std::vector<double> frequency, amplitude, angular_speed, t0;
+};
+
+template <class Io, class Meta>
+void scene_datasets(Io& io, Meta& meta) {
+  io.group("/scene");
+  io.text("/scene/text", meta.scene_text);
+  io.text("/scene/path", meta.scene_path);
+  if (io.has("/scene/walls")) io.text("/scene/walls", meta.scene_walls);  // added within schema 2
+}
+
+template <class Io, class Sim, class S>
+void state_datasets(Io& io, Sim& sim, S& a) {
+  io.group("/state");
+  io.scalar("/state/time", sim.time, "s");
+  io.scalar("/state/step", sim.step);
+  io.scalar("/state/dt", sim.dt, "s");
+  io.vec3s("/state/gravity", a.gravity, "m/s^2", 1);
+  io.scalar("/state/alpha_r", sim.params.alpha_r, "1/s");
+  io.scalar("/state/alpha_theta", sim.params.alpha_theta, "1/s");
+  if (io.has("/state/periodic")) {  // added within schema 2; a file without them had no periodic boundaries
+    io.int32s("/state/periodic", a.periodic, 3);
+    io.vec3s("/state/periodic_lo", a.periodic_lo, "m", 1);
+    io.vec3s("/state/periodic_hi", a.periodic_hi, "m", 1);
+  }
+}
+
+template <class Io, class Run>
+void run_datasets(Io& io, Run& run) {
+  io.group("/run");
+  io.text("/run/stage", run.stage);
+  io.scalar("/run/stage_start_step", run.stage_start_step);
+  io.scalar("/run/stage_steps", run.stage_steps);
+  io.scalar("/run/stage_start_time", run.stage_start_time, "s");
+  io.doubles("/run/frame_times", run.frame_times, "s");
+  if (io.has("/run/servo_integral")) io.doubles("/run/servo_integral", run.servo_integral, "m/s");  // added within schema 2
+}
+
+template <class Io, class P, class A>
+void particle_datasets(Io& io, P& p, A& a) {
+  io.group("/particles");
+  io.int64s("/particles/id", p.id);
+  const long n = static_cast<long>(p.id.size());
+  io.vec3s("/particles/position", p.x, "m", n);
+  io.vec3s("/particles/velocity", p.v, "m/s", n);
+  io.vec3s("/particles/angular_velocity", p.w, "rad/s", n);
+  io.vec3s("/particles/reference_position", p.x_ref, "m", n);
+  if (io.has("/particles/image")) io.int32s("/particles/image", a.image, n, 3);  // added within schema 2
+  io.doubles("/particles/radius", p.radius, "m", n);
+  io.doubles("/particles/mass", p.mass, "kg", n);
+  io.int32s("/particles/material", p.material, n);
+  if (io.has("/particles/fixed")) io.uint8s("/particles/fixed", p.fixed, n);  // added within schema 2
+}
+
+// Each contact property under its scene keyword (the models' keys, contact/model_table.hpp).
+template <class Io, class A>
+void material_datasets(Io& io, A& a) {
+  io.group("/materials");
+  io.strings("/materials/name", a.name, -1);
+  const long m = static_cast<long>(a.name.size());
+  io.doubles("/materials/density", a.density, "kg/m^3", m);
+  const std::vector<PropertyKey> keys = all_property_keys();
+  for (std::size_t k = 0; k < keys.size(); ++k) {
+    const std::string name = "/materials/" + std::string(keys[k].keyword);
+    if (keys[k].flag) io.int32s(name.c_str(), a.flag[k], m);
+    else io.doubles(name.c_str(), a.number[k], std::string(keys[k].si_unit).c_str(), m);
+  }
+  io.int32s("/materials/law", a.law, m);
+  io.int32s("/materials/mixing", a.mixing, 4);
+}
+
+// [[pair]] overrides (schema 3 on): a property a pair does not give is NaN (a flag: -1), its law -1.
+template <class Io, class A>
+void pair_datasets(Io& io, A& a) {
+  io.group("/pairs");
+  io.int32s("/pairs/materials", a.materials, -1, 2);
+  const long rows = static_cast<long>(a.materials.size() / 2);
+  io.int32s("/pairs/law", a.law, rows);
+  const std::vector<PropertyKey> keys = all_property_keys();
+  for (std::size_t k = 0; k < keys.size(); ++k) {
+    const std::string name = "/pairs/" + std::string(keys[k].keyword);
+    if (keys[k].flag) io.int32s(name.c_str(), a.flag[k], rows);
+    else io.doubles(name.c_str(), a.number[k], std::string(keys[k].si_unit).c_str(), rows);
+  }
+}
+
+template <class Io, class A>
+void contact_datasets(Io& io, const std::string& kind, A& a) {
+  io.int64s(("/contacts/" + kind + "_ids").c_str(), a.ids, -1, 2);
+  const long rows = static_cast<long>(a.ids.size() / 2);
+  io.vec3s(("/contacts/" + kind + "_spring").c_str(), a.spring, "N", rows);
+  io.uint8s(("/contacts/" + kind + "_bonded").c_str(), a.bonded, rows);
+}
+
+template <class Io, class A>
+void wall_datasets(Io& io, A& a) {
+  io.group("/walls");
+  io.strings("/walls/name", a.name, -1);
+  const long w = static_cast<long>(a.name.size());
+  io.int32s("/walls/material", a.material, w);
+  io.int32s("/walls/vertex_count", a.vertex_count, w);
+  io.doubles_shaped("/walls/base_vertices", a.base, {w, 4, 3}, "m");
+  // Written for readers; read back too, so that its checksum is verified and it must agree.
+  io.doubles_shaped("/walls/vertices", a.current, {w, 4, 3}, "m");
+  io.vec3s("/walls/motion_velocity", a.velocity, "m/s", w);
+  io.vec3s("/walls/motion_direction", a.direction, "1", w);
+  io.doubles("/walls/motion_frequency", a.frequency, "Hz", w);
+  io.doubles("/walls/motion_amplitude", a.amplitude, "m", w);
+  io.vec3s("/walls/motion_centre", a.centre, "m", w);
+  io.vec3s("/walls/motion_axis", a.axis, "1", w);
+  io.doubles("/walls/motion_angular_speed", a.angular_speed, "rad/s", w);
+  io.doubles("/walls/motion_t0", a.t0, "s", w);
+  io.int32s("/walls/motion_table", a.table, w);
+  io.int32s("/walls/motion_table_start", a.table_start);
+  io.doubles_shaped("/walls/motion_table_rows", a.table_rows, {-1, 4}, nullptr);
+}
+
+MaterialArrays material_arrays(const MaterialTable& table) {
+  MaterialArrays a;
+  const std::vector<PropertyKey> keys = all_property_keys();
+  a.number.resize(keys.size()), a.flag.resize(keys.size());
+  for (const Material& m : table.materials()) {
+    a.name.push_back(m.name), a.density.push_back(m.density), a.law.push_back(static_cast<int>(m.law));
+    for (std::size_t k = 0; k < keys.size(); ++k)
+      keys[k].flag ? a.flag[k].push_back(m.*keys[k].flag) : a.number[k].push_back(m.*keys[k].number);
+  }
+  const MixingRules& mix = table.rules();
+  a.mixing = {static_cast<int>(mix.stiffness), static_cast<int>(mix.friction), static_cast<int>(mix.restitution),
+              static_cast<int>(mix.strength)};
+  return a;
+}
+
+PairArrays pair_arrays(const std::vector<PairOverride>& pairs) {
+  PairArrays a;
+  const std::vector<PropertyKey> keys = all_property_keys();
+  a.number.resize(keys.size()), a.flag.resize(keys.size());
+  for (const PairOverride& o : pairs) {
+    a.materials.push_back(o.a), a.materials.push_back(o.b), a.law.push_back(o.law ? static_cast<int>(*o.law) : -1);
+    for (std::size_t k = 0; k < keys.size(); ++k) {
+      const bool given = o.gives(keys[k].keyword);
+      if (keys[k].flag) a.flag[k].push_back(given ? int{o.values.*keys[k].flag} : -1);
+      else a.number[k].push_back(given ? o.values.*keys[k].number : std::nan(""));
+    }
+  }
+  return a;
+}
+
+ContactArrays contact_arrays(const ContactList& c) {
+  ContactArrays a;
+  a.ids.resize(2 * c.size());
+  for (std::size_t i = 0; i < c.size(); ++i) a.ids[2 * i] = c.key_i[i], a.ids[2 * i + 1] = c.key_j[i];
+  a.spring = c.spring;
+  a.bonded = c.bonded;
+  return a;
+}
+
+WallArrays wall_arrays(const std::vector<Wall>& walls, double time) {
+  WallArrays a;
+  const std::size_t nw = walls.size();
+  a.base.assign(12 * nw, 0.0), a.current.assign(12 * nw, 0.0);
+  a.table_start = {0};
+  for (std::size_t k = 0; k < nw; ++k) {
+    const Wall& wl = walls[k];
+    const WallMotion& m = wl.motion;
+    a.name.push_back(wl.name);
+    a.material.push_back(wl.material);
+    a.vertex_count.push_back(static_cast<int>(wl.base.size()));
+    const std::vector<Vec3> now = wl.vertices_at(time);
+    for (std::size_t v = 0; v < wl.base.size(); ++v)
+      for (int d = 0; d < 3; ++d) a.base[12 * k + 3 * v + d] = wl.base[v][d], a.current[12 * k + 3 * v + d] = now[v][d];
+    a.velocity.push_back(m.velocity);
+    a.direction.push_back(m.direction);
+    a.frequency.push_back(m.frequency);
+    a.amplitude.push_back(m.amplitude);
+    a.centre.push_back(m.centre);
+    a.axis.push_back(m.axis);
+    a.angular_speed.push_back(m.angular_speed);
+    a.t0.push_back(m.t0);
+    // Time tables are stored once for consecutive walls sharing one (the elements of a mesh).
+    if (m.table_time.empty()) {
+      a.table.push_back(-1);
+    } else if (k > 0 && a.table.back() >= 0 && walls[k - 1].motion.table_time == m.table_time &&
+               walls[k - 1].motion.table_offset == m.table_offset) {
+      a.table.push_back(a.table.back());
+    } else {
+      a.table.push_back(static_cast<int>(a.table_start.size()) - 1);
+      for (std::size_t r = 0; r < m.table_time.size(); ++r)
+        a.table_rows.insert(a.table_rows.end(), {m.table_time[r], m.table_offset[r].x(), m.table_offset[r].y(), m.table_offset[r].z()});
+      a.table_start.push_back(static_cast<int>(a.table_rows.size() / 4));
+    }
+  }
+  return a;
+}
+
 void write_all(Writer& w, const Simulation& sim, const CheckpointMeta& meta) {
   const hid_t f = w.file();
   w.string_attribute(f, "format", kCheckpointFormat);
   w.int_attribute(f, "schema_version", kCheckpointSchema);
   w.string_attribute(f, "writer", meta.writer);
   w.string_attribute(f, "writer_version", kVersion);
-
-  w.group("/scene");
-  w.strings("/scene/text", {meta.scene_text});
-  w.strings("/scene/path", {meta.scene_path});
-  w.strings("/scene/walls", {meta.scene_walls});
-
-  w.group("/state");
-  w.scalar("/state/time", sim.time, "s");
-  w.scalar("/state/step", static_cast<std::int64_t>(sim.step));
-  w.scalar("/state/dt", sim.dt, "s");
-  w.vec3s("/state/gravity", {sim.params.gravity}, "m/s^2");
-  w.scalar("/state/alpha_r", sim.params.alpha_r, "1/s");
-  w.scalar("/state/alpha_theta", sim.params.alpha_theta, "1/s");
+  Store io(w);
+  scene_datasets(io, meta);
   const PeriodicBox& box = sim.periodic;
-  w.int32s("/state/periodic", {box.axis[0], box.axis[1], box.axis[2]});
-  w.vec3s("/state/periodic_lo", {box.lo}, "m");
-  w.vec3s("/state/periodic_hi", {box.hi}, "m");
-
-  w.group("/run");
-  w.strings("/run/stage", {meta.run.stage});
-  w.scalar("/run/stage_start_step", meta.run.stage_start_step);
-  w.scalar("/run/stage_steps", meta.run.stage_steps);
-  w.scalar("/run/stage_start_time", meta.run.stage_start_time, "s");
-  w.doubles("/run/frame_times", meta.run.frame_times, "s");
-  w.doubles("/run/servo_integral", meta.run.servo_integral, "m/s");
+  const StateArrays state{{sim.params.gravity}, {box.lo}, {box.hi}, {box.axis[0], box.axis[1], box.axis[2]}};
+  state_datasets(io, sim, state);
+  run_datasets(io, meta.run);
 
   Particles p = sim.particles;  // in id order (Particles::slots_by_id)
   p.reorder(p.slots_by_id());
-  w.group("/particles");
-  w.int64s("/particles/id", p.id);
-  w.vec3s("/particles/position", p.x, "m");
-  w.vec3s("/particles/velocity", p.v, "m/s");
-  w.vec3s("/particles/angular_velocity", p.w, "rad/s");
-  w.vec3s("/particles/reference_position", p.x_ref, "m");
-  {
-    std::vector<int> image(3 * p.size());
-    for (std::size_t k = 0; k < p.size(); ++k)
-      for (int a = 0; a < 3; ++a) image[3 * k + a] = p.image[k][a];
-    w.int32s("/particles/image", image, {p.size(), 3});
-  }
-  w.doubles("/particles/radius", p.radius, "m");
-  w.doubles("/particles/mass", p.mass, "kg");
-  w.int32s("/particles/material", p.material);
-  w.uint8s("/particles/fixed", p.fixed);
+  ParticleArrays particle;
+  for (const Vec3i& i : p.image) particle.image.insert(particle.image.end(), {i[0], i[1], i[2]});
+  particle_datasets(io, p, particle);
 
-  const std::vector<Material>& mats = sim.materials.materials();
-  auto field = [&](auto get) {
-    std::vector<double> v;
-    for (const Material& m : mats) v.push_back(get(m));
-    return v;
-  };
-  w.group("/materials");
-  {
-    std::vector<std::string> names;
-    for (const Material& m : mats) names.push_back(m.name);
-    w.strings("/materials/name", names);
-  }
-  w.doubles("/materials/density", field([](const Material& m) { return m.density; }), "kg/m^3");
-  // Each contact property under its scene keyword (the models' keys, contact/model_table.hpp).
-  const std::vector<PropertyKey> keys = all_property_keys();
-  for (const PropertyKey& k : keys) {
-    const std::string name = "/materials/" + std::string(k.keyword);
-    if (k.flag) {
-      std::vector<int> v;
-      for (const Material& m : mats) v.push_back(m.*k.flag);
-      w.int32s(name.c_str(), v);
-    } else {
-      w.doubles(name.c_str(), field([&](const Material& m) { return m.*k.number; }), std::string(k.si_unit).c_str());
-    }
-  }
-  {
-    std::vector<int> law;
-    for (const Material& m : mats) law.push_back(static_cast<int>(m.law));
-    w.int32s("/materials/law", law);
-  }
-  // [[pair]] overrides: a property a pair does not give is NaN (a flag: -1), its law -1.
-  const std::vector<PairOverride>& pairs = sim.materials.overrides();
-  w.group("/pairs");
-  {
-    std::vector<int> ab, law;
-    for (const PairOverride& o : pairs) ab.push_back(o.a), ab.push_back(o.b), law.push_back(o.law ? static_cast<int>(*o.law) : -1);
-    w.int32s("/pairs/materials", ab, {pairs.size(), 2});
-    w.int32s("/pairs/law", law);
-  }
-  for (const PropertyKey& k : keys) {
-    const std::string name = "/pairs/" + std::string(k.keyword);
-    if (k.flag) {
-      std::vector<int> v;
-      for (const PairOverride& o : pairs) v.push_back(o.gives(k.keyword) ? int{o.values.*k.flag} : -1);
-      w.int32s(name.c_str(), v);
-    } else {
-      std::vector<double> v;
-      for (const PairOverride& o : pairs) v.push_back(o.gives(k.keyword) ? o.values.*k.number : std::nan(""));
-      w.doubles(name.c_str(), v, std::string(k.si_unit).c_str());
-    }
-  }
-  const MixingRules& mix = sim.materials.rules();
-  w.int32s("/materials/mixing", {static_cast<int>(mix.stiffness), static_cast<int>(mix.friction), static_cast<int>(mix.restitution),
-                                 static_cast<int>(mix.strength)});
+  const MaterialArrays materials = material_arrays(sim.materials);
+  material_datasets(io, materials);
+  const PairArrays pairs = pair_arrays(sim.materials.overrides());
+  pair_datasets(io, pairs);
 
-  auto contacts = [&](const std::string& kind, const ContactList& c) {
-    std::vector<std::int64_t> k(2 * c.size());
-    for (std::size_t i = 0; i < c.size(); ++i) k[2 * i] = c.key_i[i], k[2 * i + 1] = c.key_j[i];
-    w.int64s(("/contacts/" + kind + "_ids").c_str(), k, {c.size(), 2});
-    w.vec3s(("/contacts/" + kind + "_spring").c_str(), c.spring, "N");
-    w.uint8s(("/contacts/" + kind + "_bonded").c_str(), c.bonded);
-  };
-  w.group("/contacts");
-  contacts("pair", sim.pair_contacts());
-  contacts("wall", sim.wall_contacts());
+  io.group("/contacts");
+  const ContactArrays pair_contacts = contact_arrays(sim.pair_contacts()), wall_contacts = contact_arrays(sim.wall_contacts());
   sim.release_contact_views();
+  contact_datasets(io, "pair", pair_contacts);
+  contact_datasets(io, "wall", wall_contacts);
 
-  w.group("/walls");
-  const std::size_t nw = sim.walls.size();
-  std::vector<std::string> names;
-  std::vector<int> material, nvert, table_index, table_start{0};
-  std::vector<Vec3> base(4 * nw, Vec3::Zero()), current(4 * nw, Vec3::Zero()), vel, dir, centre, axis;
-  std::vector<double> freq, amp, spin, t0, table_rows;
-  for (std::size_t k = 0; k < nw; ++k) {
-    const Wall& wl = sim.walls[k];
-    const WallMotion& m = wl.motion;
-    names.push_back(wl.name);
-    material.push_back(wl.material);
-    nvert.push_back(static_cast<int>(wl.base.size()));
-    const std::vector<Vec3> now = wl.vertices_at(sim.time);
-    for (std::size_t v = 0; v < wl.base.size(); ++v) base[4 * k + v] = wl.base[v], current[4 * k + v] = now[v];
-    vel.push_back(m.velocity);
-    dir.push_back(m.direction);
-    freq.push_back(m.frequency);
-    amp.push_back(m.amplitude);
-    centre.push_back(m.centre);
-    axis.push_back(m.axis);
-    spin.push_back(m.angular_speed);
-    t0.push_back(m.t0);
-    // Time tables are stored once for consecutive walls sharing one (the elements of a mesh).
-    if (m.table_time.empty()) {
-      table_index.push_back(-1);
-    } else if (k > 0 && table_index.back() >= 0 && sim.walls[k - 1].motion.table_time == m.table_time &&
-               sim.walls[k - 1].motion.table_offset == m.table_offset) {
-      table_index.push_back(table_index.back());
-    } else {
-      table_index.push_back(static_cast<int>(table_start.size()) - 1);
-      for (std::size_t r = 0; r < m.table_time.size(); ++r)
-        table_rows.insert(table_rows.end(), {m.table_time[r], m.table_offset[r].x(), m.table_offset[r].y(), m.table_offset[r].z()});
-      table_start.push_back(static_cast<int>(table_rows.size() / 4));
-    }
-  }
-  w.strings("/walls/name", names);
-  w.int32s("/walls/material", material);
-  w.int32s("/walls/vertex_count", nvert);
-  w.array("/walls/base_vertices", H5T_NATIVE_DOUBLE, nw ? base.front().data() : nullptr, {nw, 4, 3}, "m");
-  w.array("/walls/vertices", H5T_NATIVE_DOUBLE, nw ? current.front().data() : nullptr, {nw, 4, 3}, "m");
-  w.vec3s("/walls/motion_velocity", vel, "m/s");
-  w.vec3s("/walls/motion_direction", dir, "1");
-  w.doubles("/walls/motion_frequency", freq, "Hz");
-  w.doubles("/walls/motion_amplitude", amp, "m");
-  w.vec3s("/walls/motion_centre", centre, "m");
-  w.vec3s("/walls/motion_axis", axis, "1");
-  w.doubles("/walls/motion_angular_speed", spin, "rad/s");
-  w.doubles("/walls/motion_t0", t0, "s");
-  w.int32s("/walls/motion_table", table_index);
-  w.int32s("/walls/motion_table_start", table_start);
-  w.array("/walls/motion_table_rows", H5T_NATIVE_DOUBLE, table_rows.data(), {table_rows.size() / 4, 4}, nullptr);
+  const WallArrays walls = wall_arrays(sim.walls, sim.time);
+  wall_datasets(io, walls);
 }
 
 }  // namespace
@@ -532,190 +673,144 @@ void read_checkpoint(const std::string& path, Simulation& sim, CheckpointMeta& m
   Reader r(path);
   meta.writer = r.string_attribute("writer");
   meta.writer_version = r.string_attribute("writer_version");
-  meta.scene_text = r.strings("/scene/text", 1)[0];
-  meta.scene_path = r.strings("/scene/path", 1)[0];
-  meta.scene_walls = r.has("/scene/walls") ? r.strings("/scene/walls", 1)[0] : "";  // optional: added within schema 2
-
-  sim.time = r.scalar("/state/time");
-  sim.step = r.scalar_int("/state/step");
-  sim.dt = r.scalar("/state/dt");
-  sim.params.gravity = r.vec3s("/state/gravity", 1)[0];
-  sim.params.alpha_r = r.scalar("/state/alpha_r");
-  sim.params.alpha_theta = r.scalar("/state/alpha_theta");
-  // Optional: added within schema 2; a file without them had no periodic boundaries.
+  Load io(r);
+  meta.scene_walls.clear();
+  scene_datasets(io, meta);
+  StateArrays state;
+  state_datasets(io, sim, state);
+  sim.params.gravity = state.gravity[0];
   sim.periodic = PeriodicBox{};
-  if (r.has("/state/periodic")) {
-    const std::vector<int> axis = r.int32s("/state/periodic", 3);
-    const Vec3 lo = r.vec3s("/state/periodic_lo", 1)[0], hi = r.vec3s("/state/periodic_hi", 1)[0];
+  if (!state.periodic.empty()) {
     for (int a = 0; a < 3; ++a) {
-      if (axis[a] != 0 && axis[a] != 1) throw IoError(path + ": /state/periodic holds neither 0 nor 1 (damaged file)");
-      sim.periodic.axis[a] = axis[a] == 1;
+      if (state.periodic[a] != 0 && state.periodic[a] != 1) throw IoError(path + ": /state/periodic holds neither 0 nor 1 (damaged file)");
+      sim.periodic.axis[a] = state.periodic[a] == 1;
+      const Vec3 &lo = state.periodic_lo[0], &hi = state.periodic_hi[0];
       if (sim.periodic.axis[a] && !(hi[a] > lo[a] && std::isfinite(hi[a] - lo[a])))
         throw IoError(path + ": /state/periodic_lo and _hi do not bound a period (damaged file)");
     }
-    sim.periodic.lo = lo;
-    sim.periodic.hi = hi;
+    sim.periodic.lo = state.periodic_lo[0];
+    sim.periodic.hi = state.periodic_hi[0];
   }
-
-  meta.run.stage = r.strings("/run/stage", 1)[0];
-  meta.run.stage_start_step = r.scalar_int("/run/stage_start_step");
-  meta.run.stage_steps = r.scalar_int("/run/stage_steps");
-  meta.run.stage_start_time = r.scalar("/run/stage_start_time");
-  meta.run.frame_times = r.doubles("/run/frame_times");
-  // Optional: added within schema 2; a file without it held no integral action (all zero).
-  if (r.has("/run/servo_integral")) meta.run.servo_integral = r.doubles("/run/servo_integral");
+  meta.run = RunInfo{};
+  run_datasets(io, meta.run);
 
   Particles& p = sim.particles;
-  p.id = r.int64s("/particles/id");
+  ParticleArrays particle;
+  p.fixed.clear();
+  particle_datasets(io, p, particle);
   const long n = static_cast<long>(p.id.size());
-  p.x = r.vec3s("/particles/position", n);
-  p.v = r.vec3s("/particles/velocity", n);
-  p.w = r.vec3s("/particles/angular_velocity", n);
-  p.x_ref = r.vec3s("/particles/reference_position", n);
   p.image.assign(n, Vec3i::Zero());
-  if (r.has("/particles/image")) {  // optional, as /state/periodic
-    const std::vector<int> image = r.int32s("/particles/image", n, 3);
-    for (long k = 0; k < n; ++k) p.image[k] = Vec3i(image[3 * k], image[3 * k + 1], image[3 * k + 2]);
-  }
-  p.radius = r.doubles("/particles/radius", n);
-  p.mass = r.doubles("/particles/mass", n);
-  p.material = r.int32s("/particles/material", n);
-  p.fixed.assign(n, 0);
-  if (r.has("/particles/fixed")) {  // optional, as /state/periodic
-    p.fixed = r.uint8s("/particles/fixed", n);
-    for (std::uint8_t f : p.fixed)
-      if (f > 1) throw IoError(path + ": /particles/fixed holds neither 0 nor 1 (damaged file)");
-  }
+  for (std::size_t k = 0; k < particle.image.size() / 3; ++k) p.image[k] = Vec3i(particle.image[3 * k], particle.image[3 * k + 1], particle.image[3 * k + 2]);
+  if (p.fixed.empty()) p.fixed.assign(n, 0);
+  for (std::uint8_t f : p.fixed)
+    if (f > 1) throw IoError(path + ": /particles/fixed holds neither 0 nor 1 (damaged file)");
 
-  const std::vector<std::string> names = r.strings("/materials/name");
-  const long nm = static_cast<long>(names.size());
-  const std::vector<double> density = r.doubles("/materials/density", nm);
-  const std::vector<int> law = r.int32s("/materials/law", nm);
-  const std::vector<int> mix = r.int32s("/materials/mixing", 4);
-  std::vector<Material> mats(nm);
-  for (long k = 0; k < nm; ++k) {
-    if (law[k] < 0 || law[k] >= kNormalLaws) throw IoError(path + ": /materials/law holds an unknown law (damaged file)");
-    mats[k].name = names[k];
-    mats[k].density = density[k];
-    mats[k].law = static_cast<NormalLaw>(law[k]);
-  }
+  const std::vector<PropertyKey> keys = all_property_keys();
+  MaterialArrays materials;
+  materials.number.resize(keys.size()), materials.flag.resize(keys.size());
+  material_datasets(io, materials);
+  const long nm = static_cast<long>(materials.name.size());
   const auto flag_of = [&](int v, const std::string& name) {
     if (v != 0 && v != 1) throw IoError(path + ": " + name + " holds neither 0 nor 1 (damaged file)");
     return v == 1;
   };
-  const std::vector<PropertyKey> keys = all_property_keys();
-  for (const PropertyKey& k : keys) {
-    const std::string name = "/materials/" + std::string(k.keyword);
-    if (k.flag) {
-      const std::vector<int> v = r.int32s(name.c_str(), nm);
-      for (long m = 0; m < nm; ++m) mats[m].*k.flag = flag_of(v[m], name);
-    } else {
-      const std::vector<double> v = r.doubles(name.c_str(), nm);
-      for (long m = 0; m < nm; ++m) mats[m].*k.number = v[m];
-    }
+  std::vector<Material> mats(nm);
+  for (long m = 0; m < nm; ++m) {
+    if (materials.law[m] < 0 || materials.law[m] >= kNormalLaws) throw IoError(path + ": /materials/law holds an unknown law (damaged file)");
+    mats[m].name = materials.name[m];
+    mats[m].density = materials.density[m];
+    mats[m].law = static_cast<NormalLaw>(materials.law[m]);
+    for (std::size_t k = 0; k < keys.size(); ++k)
+      keys[k].flag ? void(mats[m].*keys[k].flag = flag_of(materials.flag[k][m], "/materials/" + std::string(keys[k].keyword)))
+                   : void(mats[m].*keys[k].number = materials.number[k][m]);
   }
-  for (int m : mix)
+  for (int m : materials.mixing)
     if (m < 0 || m > 3) throw IoError(path + ": /materials/mixing holds an unknown rule (damaged file)");
-  // [[pair]] overrides (schema 3 on; a schema 2 file did not store them).
   std::vector<PairOverride> overrides;
-  if (r.schema() >= 3) {
-    const std::vector<int> ab = r.int32s("/pairs/materials", -1, 2), pair_law = r.int32s("/pairs/law", static_cast<long>(ab.size() / 2));
-    overrides.resize(pair_law.size());
+  if (r.schema() >= 3) {  // a schema 2 file did not store them
+    PairArrays pairs;
+    pairs.number.resize(keys.size()), pairs.flag.resize(keys.size());
+    pair_datasets(io, pairs);
+    overrides.resize(pairs.law.size());
     for (std::size_t e = 0; e < overrides.size(); ++e) {
-      overrides[e].a = ab[2 * e], overrides[e].b = ab[2 * e + 1];
-      if (overrides[e].a < 0 || overrides[e].a >= nm || overrides[e].b < 0 || overrides[e].b >= nm)
+      PairOverride& o = overrides[e];
+      o.a = pairs.materials[2 * e], o.b = pairs.materials[2 * e + 1];
+      if (o.a < 0 || o.a >= nm || o.b < 0 || o.b >= nm)
         throw IoError(path + ": /pairs/materials refers to a material that does not exist (damaged file)");
-      if (pair_law[e] < -1 || pair_law[e] >= kNormalLaws) throw IoError(path + ": /pairs/law holds an unknown law (damaged file)");
-      if (pair_law[e] >= 0) overrides[e].law = static_cast<NormalLaw>(pair_law[e]);
-    }
-    for (const PropertyKey& k : keys) {
-      const std::string name = "/pairs/" + std::string(k.keyword);
-      if (k.flag) {
-        const std::vector<int> v = r.int32s(name.c_str(), static_cast<long>(overrides.size()));
-        for (std::size_t e = 0; e < overrides.size(); ++e)
-          if (v[e] != -1) overrides[e].set(k.keyword, flag_of(v[e], name));
-      } else {
-        const std::vector<double> v = r.doubles(name.c_str(), static_cast<long>(overrides.size()));
-        for (std::size_t e = 0; e < overrides.size(); ++e)
-          if (!std::isnan(v[e])) overrides[e].set(k.keyword, v[e]);
+      if (pairs.law[e] < -1 || pairs.law[e] >= kNormalLaws) throw IoError(path + ": /pairs/law holds an unknown law (damaged file)");
+      if (pairs.law[e] >= 0) o.law = static_cast<NormalLaw>(pairs.law[e]);
+      for (std::size_t k = 0; k < keys.size(); ++k) {
+        if (keys[k].flag && pairs.flag[k][e] != -1) o.set(keys[k].keyword, flag_of(pairs.flag[k][e], "/pairs/" + std::string(keys[k].keyword)));
+        if (!keys[k].flag && !std::isnan(pairs.number[k][e])) o.set(keys[k].keyword, pairs.number[k][e]);
       }
     }
   }
   // The contact constants as the writer's run had them; tools that have the scene rebuild them
   // from it (and check the materials agree).
+  const std::vector<int>& mix = materials.mixing;
   sim.materials = MaterialTable(mats, {static_cast<MixRule>(mix[0]), static_cast<MixRule>(mix[1]), static_cast<MixRule>(mix[2]),
                                        static_cast<MixRule>(mix[3])}, overrides);
   for (int m : p.material)
     if (m < 0 || m >= nm) throw IoError(path + ": /particles/material refers to a material that does not exist (damaged file)");
 
-  auto contacts = [&](const std::string& kind, ContactList& c) {
-    const std::vector<std::int64_t> k = r.int64s(("/contacts/" + kind + "_ids").c_str(), -1, 2);
-    const long nc = static_cast<long>(k.size() / 2);
-    const std::vector<Vec3> s = r.vec3s(("/contacts/" + kind + "_spring").c_str(), nc);
-    const std::vector<std::uint8_t> b = r.uint8s(("/contacts/" + kind + "_bonded").c_str(), nc);
+  auto contacts = [&](const std::string& kind) {
+    ContactArrays a;
+    contact_datasets(io, kind, a);
+    ContactList c;
+    const long nc = static_cast<long>(a.spring.size());
     c.resize(nc);
     for (long i = 0; i < nc; ++i) {
-      c.key_i[i] = k[2 * i];
-      c.key_j[i] = k[2 * i + 1];
-      c.spring[i] = s[i];
-      c.bonded[i] = b[i];
+      c.key_i[i] = a.ids[2 * i];
+      c.key_j[i] = a.ids[2 * i + 1];
+      c.spring[i] = a.spring[i];
+      c.bonded[i] = a.bonded[i];
       // History is carried over by a merge of key-sorted lists, as the writer stores them.
       if (i > 0 && !(c.key_i[i - 1] < c.key_i[i] || (c.key_i[i - 1] == c.key_i[i] && c.key_j[i - 1] < c.key_j[i])))
         throw IoError(path + ": /contacts/" + kind + "_ids is not sorted by id (damaged or foreign file)");
     }
+    return c;
   };
-  ContactList pairs, walls;
-  contacts("pair", pairs);
-  contacts("wall", walls);
-  sim.set_contacts(std::move(pairs), std::move(walls));
+  ContactList pair_contacts = contacts("pair"), wall_contacts = contacts("wall");
+  sim.set_contacts(std::move(pair_contacts), std::move(wall_contacts));
 
-  const std::vector<std::string> wnames = r.strings("/walls/name");
-  const long nw = static_cast<long>(wnames.size());
-  const std::vector<int> wmat = r.int32s("/walls/material", nw), nvert = r.int32s("/walls/vertex_count", nw);
-  const std::vector<double> base = r.values<double>("/walls/base_vertices", H5T_NATIVE_DOUBLE, std::vector<long>{nw, 4, 3});
-  // Written for readers; read here too so that its checksum is verified and it must agree.
-  const std::vector<double> current = r.values<double>("/walls/vertices", H5T_NATIVE_DOUBLE, std::vector<long>{nw, 4, 3});
-  const std::vector<Vec3> vel = r.vec3s("/walls/motion_velocity", nw), dir = r.vec3s("/walls/motion_direction", nw),
-                          centre = r.vec3s("/walls/motion_centre", nw), axis = r.vec3s("/walls/motion_axis", nw);
-  const std::vector<double> freq = r.doubles("/walls/motion_frequency", nw), amp = r.doubles("/walls/motion_amplitude", nw),
-                            spin = r.doubles("/walls/motion_angular_speed", nw), t0 = r.doubles("/walls/motion_t0", nw);
-  const std::vector<int> table_index = r.int32s("/walls/motion_table", nw), table_start = r.int32s("/walls/motion_table_start");
-  const std::vector<double> table_rows = r.values<double>("/walls/motion_table_rows", H5T_NATIVE_DOUBLE, -1, 4);
-  const long ntables = static_cast<long>(table_start.size()) - 1, nrows = static_cast<long>(table_rows.size() / 4);
-  if (ntables < 0 || table_start[0] != 0 || table_start.back() != nrows)
+  WallArrays a;
+  wall_datasets(io, a);
+  const long nw = static_cast<long>(a.name.size());
+  const long ntables = static_cast<long>(a.table_start.size()) - 1, nrows = static_cast<long>(a.table_rows.size() / 4);
+  if (ntables < 0 || a.table_start[0] != 0 || a.table_start.back() != nrows)
     throw IoError(path + ": /walls/motion_table_start does not fit /walls/motion_table_rows (damaged file)");
   sim.walls.assign(nw, Wall{});
   for (long k = 0; k < nw; ++k) {
     Wall& wl = sim.walls[k];
-    wl.name = wnames[k];
-    wl.material = wmat[k];
-    const int tab = table_index[k];
-    if (nvert[k] < 3 || nvert[k] > 4 || wmat[k] < 0 || wmat[k] >= nm || tab < -1 || tab >= ntables)
+    wl.name = a.name[k];
+    wl.material = a.material[k];
+    const int tab = a.table[k], nvert = a.vertex_count[k];
+    if (nvert < 3 || nvert > 4 || wl.material < 0 || wl.material >= nm || tab < -1 || tab >= ntables)
       throw IoError(path + ": wall '" + wl.name + "' has invalid data (damaged file)");
-    for (int v = 0; v < nvert[k]; ++v) wl.base.emplace_back(base[12 * k + 3 * v], base[12 * k + 3 * v + 1], base[12 * k + 3 * v + 2]);
+    for (int v = 0; v < nvert; ++v) wl.base.emplace_back(a.base[12 * k + 3 * v], a.base[12 * k + 3 * v + 1], a.base[12 * k + 3 * v + 2]);
     WallMotion& m = wl.motion;
-    m.velocity = vel[k];
-    m.direction = dir[k];
-    m.frequency = freq[k];
-    m.amplitude = amp[k];
-    m.centre = centre[k];
-    m.axis = axis[k];
-    m.angular_speed = spin[k];
-    m.t0 = t0[k];
+    m.velocity = a.velocity[k];
+    m.direction = a.direction[k];
+    m.frequency = a.frequency[k];
+    m.amplitude = a.amplitude[k];
+    m.centre = a.centre[k];
+    m.axis = a.axis[k];
+    m.angular_speed = a.angular_speed[k];
+    m.t0 = a.t0[k];
     if (tab >= 0) {
-      if (!(table_start[tab] < table_start[tab + 1]))
+      if (!(a.table_start[tab] < a.table_start[tab + 1]))
         throw IoError(path + ": wall '" + wl.name + "': empty or misordered motion table (damaged file)");
-      for (int row = table_start[tab]; row < table_start[tab + 1]; ++row) {
-        const double* t = &table_rows[4 * row];
-        if (!(row == table_start[tab] ? t[0] == 0 : t[0] > m.table_time.back()))
+      for (int row = a.table_start[tab]; row < a.table_start[tab + 1]; ++row) {
+        const double* t = &a.table_rows[4 * row];
+        if (!(row == a.table_start[tab] ? t[0] == 0 : t[0] > m.table_time.back()))
           throw IoError(path + ": wall '" + wl.name + "': motion table times do not increase from 0 (damaged file)");
         m.table_time.push_back(t[0]);
         m.table_offset.emplace_back(t[1], t[2], t[3]);
       }
     }
     const std::vector<Vec3> now = wl.vertices_at(sim.time);
-    for (int v = 0; v < nvert[k]; ++v)
-      if (now[v] != Vec3(current[12 * k + 3 * v], current[12 * k + 3 * v + 1], current[12 * k + 3 * v + 2]))
+    for (int v = 0; v < nvert; ++v)
+      if (now[v] != Vec3(a.current[12 * k + 3 * v], a.current[12 * k + 3 * v + 1], a.current[12 * k + 3 * v + 2]))
         throw IoError(path + ": wall '" + wl.name + "': /walls/vertices disagrees with its base vertices and motion (damaged file)");
   }
 }
