@@ -1,9 +1,12 @@
 #pragma once
 // The four-wide versions (AVX2, where the processor has it) of the force loop, the integration
-// (sim/motion.cpp) and the rebuild check (search/largest_move.cpp): whether they run, and what
-// they share. Each does per contact or particle the same operations in the same order as the
-// plain loop it stands for, so both give the same bits (IEEE 754 rounds each operation alike in a
-// vector lane and in a scalar register; no fused multiply-add is enabled, so none is contracted).
+// (sim/motion.cpp), the rebuild check (search/largest_move.cpp) and the search's distance pre-test
+// (search/linked_cells.cpp): whether they run, and how they are marked. Each does per contact or
+// particle the same operations in the same order as the plain loop it stands for, so both give
+// the same bits (IEEE 754 rounds each operation alike in a vector lane and in a scalar register;
+// no fused multiply-add is enabled, so none is contracted). Their operations are the layer's:
+// lanes.hpp (lane types and arithmetic), lanes_avx2.hpp (what needs AVX2 instructions of its
+// own), memory.hpp (loads, stores, gathers), layout.hpp (four vectors' layouts in registers).
 // (AVX-512, eight lanes, was tried for the law: 15 % slower on an Intel Xeon, same bits.)
 
 namespace dem {
@@ -15,10 +18,17 @@ void set_simd_loops(bool on); // on unless DEM_SIMD=off; tests turn it off to co
 }  // namespace dem
 
 #if defined(__x86_64__)
+#define DEM_SIMD_LOOPS 1
+// A four-wide loop: compiled for AVX2 (the build stays generic x86-64), called only where
+// simd_loops_on(); the layer's operations inline only into such a function.
+#define DEM_AVX2 [[gnu::target("avx2")]]
+// An operation of the layer: always inlined into its four-wide caller (a 32-byte vector passed by
+// value to a function of another target would change the calling convention).
+#define DEM_AVX2_INLINE [[gnu::target("avx2"), gnu::always_inline]] inline
+
 #include <immintrin.h>
 
 #include "core/types.hpp"
-#define DEM_SIMD_LOOPS 1
 
 namespace dem::simd {
 
