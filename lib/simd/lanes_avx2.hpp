@@ -14,6 +14,10 @@ namespace dem::simd {
 using lanes::Lanes4;
 using lanes::Mask4;
 
+// a in every lane: one vbroadcastsd (lanes.hpp's Lanes4(a), compiled for the default target, is
+// split into 16-byte halves before it is inlined: vunpcklpd and vperm2f128, and no folding).
+DEM_AVX2_INLINE Lanes4 broadcast(double a) { return _mm256_set1_pd(a); }
+
 // One bit per lane, lane 0 lowest: to branch on, or to count.
 DEM_AVX2_INLINE int bits(Mask4 where) { return _mm256_movemask_pd((__m256d)where.v); }
 DEM_AVX2_INLINE Mask4 either(Mask4 a, Mask4 b) { return {(lanes::i64x4)_mm256_or_pd((__m256d)a.v, (__m256d)b.v)}; }
