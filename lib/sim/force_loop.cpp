@@ -209,7 +209,7 @@ DEM_AVX2 void sum_pair_contacts_avx2(const ForceBlocks& out, const ContactSum* s
   const int* const by_key = out.by_key.data();
   const int* const start = out.by_key_start.data();
   for (long i = lo; i < hi; ++i) {
-    const Lanes4 r = radius[i];
+    const Lanes4 r = simd::broadcast(radius[i]);
     Lanes4 f{}, t{};  // +0 in every lane
     for (int e = start[i]; e < start[i + 1]; ++e) {
       const unsigned code = static_cast<unsigned>(by_key[e]);

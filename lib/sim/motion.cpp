@@ -44,8 +44,9 @@ long move_one_by_one(const MotionArrays& a, const MotionConstants& c, long first
 using lanes::Lanes4;
 
 DEM_AVX2 long move_four_at_a_time(const MotionArrays& a, const MotionConstants& c, long first, long last) {
-  const Lanes4 ar = c.ar, br = c.br, at = c.at, bt = c.bt;
-  const Lanes4 dt = c.dt, two_fifths = 0.4, largest = DBL_MAX;
+  using simd::broadcast;
+  const Lanes4 ar = broadcast(c.ar), br = broadcast(c.br), at = broadcast(c.at), bt = broadcast(c.bt);
+  const Lanes4 dt = broadcast(c.dt), two_fifths = broadcast(0.4), largest = broadcast(DBL_MAX);
   // Four particles' vectors in three registers (simd/layout.hpp: packed), and what they are
   // compared with: the period (an axis that is not periodic: no bound), to see which particles
   // left it.
