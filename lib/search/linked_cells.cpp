@@ -47,7 +47,7 @@ void sort_small(FoundContact* first, FoundContact* last) {
 // decides each of those, so that both loops find exactly the same pairs).
 DEM_AVX2 inline int maybe_near_four(const Vec3* x, const double* radius, int a, const int* slots, double margin) {
   using lanes::Lanes4;
-  const lanes::Triple<Lanes4> b = simd::load_four(x, slots);
+  const lanes::Triple<Lanes4> b = simd::load_four(x, slots[0], slots[1], slots[2], slots[3]);
   const Lanes4 dx = simd::broadcast(x[a].x()) - b.x, dy = simd::broadcast(x[a].y()) - b.y, dz = simd::broadcast(x[a].z()) - b.z;
   const Lanes4 d2 = (dx * dx + dy * dy) + dz * dz;
   const Lanes4 reach = (simd::broadcast(radius[a]) + simd::gather(radius, simd::load(slots))) + simd::broadcast(margin);

@@ -34,7 +34,9 @@ DEM_AVX2 int find_contacts_avx2(const CandidateArrays a, const PeriodicBox& box,
         simd::prefetch(a.x + j);
         simd::prefetch(a.radius + j);
       }
-    const lanes::Triple<Lanes4> pi = simd::load_four(a.x, a.slot_i + k), pj = simd::load_four(a.x, a.slot_j + k);
+    const simd::Ints4 i = simd::load(a.slot_i + k), j = simd::load(a.slot_j + k);
+    const lanes::Triple<Lanes4> pi = simd::load_four(a.x, a.slot_i[k], a.slot_i[k + 1], a.slot_i[k + 2], a.slot_i[k + 3]);
+    const lanes::Triple<Lanes4> pj = simd::load_four(a.x, a.slot_j[k], a.slot_j[k + 1], a.slot_j[k + 2], a.slot_j[k + 3]);
     Lanes4 dx = pj.x - pi.x;
     Lanes4 dy = pj.y - pi.y;
     Lanes4 dz = pj.z - pi.z;
@@ -43,7 +45,7 @@ DEM_AVX2 int find_contacts_avx2(const CandidateArrays a, const PeriodicBox& box,
       if (box.axis[1]) dy = simd::nearest_image(dy, broadcast(box.length(1)), broadcast(0.5 * box.length(1)));
       if (box.axis[2]) dz = simd::nearest_image(dz, broadcast(box.length(2)), broadcast(0.5 * box.length(2)));
     }
-    const Lanes4 r = simd::gather(a.radius, simd::load(a.slot_i + k)) + simd::gather(a.radius, simd::load(a.slot_j + k));
+    const Lanes4 r = simd::gather(a.radius, i) + simd::gather(a.radius, j);
     const Lanes4 d2 = (dx * dx + dy * dy) + dz * dz;
     int now = simd::bits(lanes::less(d2, r * r));
     std::uint32_t bonded4, active4;

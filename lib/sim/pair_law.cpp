@@ -18,6 +18,7 @@ using lanes::Triple;
 using V3 = Triple<Lanes4>;
 
 DEM_AVX2_INLINE V3 load3(const double* x, const double* y, const double* z) { return {simd::load(x), simd::load(y), simd::load(z)}; }
+DEM_AVX2_INLINE V3 load_four(const Vec3* base, const int (&slot)[4]) { return simd::load_four(base, slot[0], slot[1], slot[2], slot[3]); }
 // One field of four lanes' pair parameters.
 DEM_AVX2_INLINE Lanes4 param(const PairParams* const (&pp)[4], double PairParams::*field) {
   return lanes::lanes4(pp[0]->*field, pp[1]->*field, pp[2]->*field, pp[3]->*field);
@@ -87,8 +88,8 @@ DEM_AVX2 double cundall_law_avx2(const PairLawArrays a, const MaterialTable& mat
     c.n = d * (Lanes4(1.0) / dist);
     const Lanes4 ri = simd::gather(a.radius, i), rj = simd::gather(a.radius, j);
     c.overlap = (ri + rj) - dist;
-    c.v_rel = simd::load_four(a.v, jl) - simd::load_four(a.v, il);
-    c.w_arm = rj * simd::load_four(a.w, jl) + ri * simd::load_four(a.w, il);
+    c.v_rel = load_four(a.v, jl) - load_four(a.v, il);
+    c.w_arm = rj * load_four(a.w, jl) + ri * load_four(a.w, il);
     const Lanes4 mi = simd::gather(a.mass, i), mj = simd::gather(a.mass, j);
     c.m_eff = (mi * mj) / (mi + mj);
     if constexpr (Fixed) {  // effective_mass: against a held particle, the other's mass
@@ -103,7 +104,7 @@ DEM_AVX2 double cundall_law_avx2(const PairLawArrays a, const MaterialTable& mat
     }
     // Without bonds (Bonds false: no contact of the scene holds one) every lane's flag is false.
     Mask4 bonded = Bonds ? lanes::mask4(a.bonded[kl[0]], a.bonded[kl[1]], a.bonded[kl[2]], a.bonded[kl[3]]) : Mask4{};
-    V3 spring = in_tangent_plane(simd::load_four(a.spring, kl), c.n);
+    V3 spring = in_tangent_plane(load_four(a.spring, kl), c.n);
     const LaneForce<Lanes4> f = evaluate_in_plane<CundallNormal>(law, c, dt, spring, bonded);  // Cundall bonds never break
     const V3 torque_per_radius = cross(c.n, f.tangential);
 

@@ -42,12 +42,14 @@ DEM_AVX2_INLINE Ints4 gather(const int* base, Ints4 index) {
   return {_mm_mask_i32gather_epi32(_mm_setzero_si128(), base, index.v, _mm_set1_epi32(-1), 4)};
 }
 
-// base[slot[0..3]] as x, y and z of the four: each vector read with one masked load and the four
-// transposed, in place of three gathers (pass 1 took 15 % fewer perf samples on the chute so).
-DEM_AVX2_INLINE Triple<Lanes4> load_four(const Vec3* base, const int* slot) {
+// base[a], base[b], base[c], base[d] as x, y and z of the four: each vector read with one masked
+// load and the four transposed, in place of three gathers (pass 1 took 15 % fewer perf samples on
+// the chute so). The slots by value: read through a pointer here, pass 1's loop kept one more
+// pointer and spilled a register.
+DEM_AVX2_INLINE Triple<Lanes4> load_four(const Vec3* base, int a, int b, int c, int d) {
   const __m256i xyz = _mm256_setr_epi64x(-1, -1, -1, 0);
-  const __m256d ra = _mm256_maskload_pd(base[slot[0]].data(), xyz), rb = _mm256_maskload_pd(base[slot[1]].data(), xyz);
-  const __m256d rc = _mm256_maskload_pd(base[slot[2]].data(), xyz), rd = _mm256_maskload_pd(base[slot[3]].data(), xyz);
+  const __m256d ra = _mm256_maskload_pd(base[a].data(), xyz), rb = _mm256_maskload_pd(base[b].data(), xyz);
+  const __m256d rc = _mm256_maskload_pd(base[c].data(), xyz), rd = _mm256_maskload_pd(base[d].data(), xyz);
   const __m256d xz_ab = _mm256_unpacklo_pd(ra, rb), xz_cd = _mm256_unpacklo_pd(rc, rd);  // xa xb za zb, xc xd zc zd
   const __m256d y_ab = _mm256_unpackhi_pd(ra, rb), y_cd = _mm256_unpackhi_pd(rc, rd);    // ya yb 0 0, yc yd 0 0
   return {_mm256_permute2f128_pd(xz_ab, xz_cd, 0x20), _mm256_permute2f128_pd(y_ab, y_cd, 0x20),
