@@ -52,20 +52,20 @@ struct PairProperties {
 
 // One scene key of a contact property.
 struct PropertyKey {
-  std::string_view keyword;  // in [[material]] and [[pair]], and the checkpoint's /materials/<keyword>
+  std::string_view keyword{};  // in [[material]] and [[pair]], and the checkpoint's /materials/<keyword>
   double ContactProperties::*number = nullptr;  // the property, or
   bool ContactProperties::*flag = nullptr;      // a true/false one
   double lo = 0, hi = 0;  // allowed range of a number, ends open where said
   bool lo_open = false, hi_open = false;
-  std::string_view unit;     // shown in messages with the range, e.g. "N/m"
-  std::string_view si_unit;  // the checkpoint's units attribute
+  std::string_view unit{};     // shown in messages with the range, e.g. "N/m"
+  std::string_view si_unit{};  // the checkpoint's units attribute
   // The [mixing] rule for unlike materials (a flag: either's); none for a property each material
   // has, that its law combines itself (not given in a [[pair]]).
   MixRule MixingRules::*mixing = nullptr;
   // When a [[material]] omits it: required, or the value of an earlier key (default_key), or
   // default_value.
   bool required = false;
-  std::string_view default_key;
+  std::string_view default_key{};
   double default_value = 0;
 };
 

@@ -7,6 +7,8 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "simd/lanes_avx2.hpp"
+#include "simd/memory.hpp"
 #include "simd/simd.hpp"
 
 namespace dem {
@@ -43,14 +45,13 @@ void sort_small(FoundContact* first, FoundContact* last) {
 // Which of the particles at slots[0..3] may lie within reach of particle a: a bit per lane where
 // |x_a - x_b|^2 < (r_a + r_b + margin)^2, with a margin far above round-off (the plain test then
 // decides each of those, so that both loops find exactly the same pairs).
-[[gnu::target("avx2")]] inline int maybe_near_four(const Vec3* x, const double* radius, int a, const int* slots, double margin) {
-  __m256d xb, yb, zb;
-  simd::load_four(x, slots[0], slots[1], slots[2], slots[3], xb, yb, zb);
-  const __m256d dx = _mm256_set1_pd(x[a].x()) - xb, dy = _mm256_set1_pd(x[a].y()) - yb, dz = _mm256_set1_pd(x[a].z()) - zb;
-  const __m256d d2 = (dx * dx + dy * dy) + dz * dz;
-  const __m128i b = _mm_loadu_si128(reinterpret_cast<const __m128i*>(slots));
-  const __m256d reach = (_mm256_set1_pd(radius[a]) + simd::gather(radius, b)) + _mm256_set1_pd(margin);
-  return _mm256_movemask_pd(_mm256_cmp_pd(d2, reach * reach * _mm256_set1_pd(1 + 1e-12), _CMP_LT_OQ));
+DEM_AVX2 inline int maybe_near_four(const Vec3* x, const double* radius, int a, const int* slots, double margin) {
+  using lanes::Lanes4;
+  const lanes::Triple<Lanes4> b = simd::load_four(x, slots[0], slots[1], slots[2], slots[3]);
+  const Lanes4 dx = simd::broadcast(x[a].x()) - b.x, dy = simd::broadcast(x[a].y()) - b.y, dz = simd::broadcast(x[a].z()) - b.z;
+  const Lanes4 d2 = (dx * dx + dy * dy) + dz * dz;
+  const Lanes4 reach = (simd::broadcast(radius[a]) + simd::gather(radius, simd::load(slots))) + simd::broadcast(margin);
+  return simd::bits(lanes::less(d2, reach * reach * simd::broadcast(1 + 1e-12)));
 }
 #endif
 

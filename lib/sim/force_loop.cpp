@@ -14,6 +14,8 @@
 #include "contact/model_table.hpp"
 #include "sim/find_contacts.hpp"
 #include "sim/pair_law.hpp"
+#include "simd/lanes_avx2.hpp"
+#include "simd/memory.hpp"
 #include "simd/simd.hpp"
 #include "sim/simulation.hpp"
 
@@ -204,23 +206,21 @@ void sum_pair_contacts_plain(const ForceBlocks& out, const ContactSum* sum, cons
   }
 }
 #ifdef DEM_SIMD_LOOPS
-[[gnu::target("avx2")]] void sum_pair_contacts_avx2(const ForceBlocks& out, const ContactSum* sum, const double* radius, long lo,
-                                                    long hi) {
-  const __m256i xyz = _mm256_setr_epi64x(-1, -1, -1, 0);
+DEM_AVX2 void sum_pair_contacts_avx2(const ForceBlocks& out, const ContactSum* sum, const double* radius, long lo, long hi) {
+  using lanes::Lanes4;
   const int* const by_key = out.by_key.data();
   const int* const start = out.by_key_start.data();
   for (long i = lo; i < hi; ++i) {
-    const __m256d r = _mm256_set1_pd(radius[i]);
-    __m256d f = _mm256_setzero_pd(), t = _mm256_setzero_pd();
+    const Lanes4 r = simd::broadcast(radius[i]);
+    Lanes4 f{}, t{};  // +0 in every lane
     for (int e = start[i]; e < start[i + 1]; ++e) {
       const unsigned code = static_cast<unsigned>(by_key[e]);
       const double* c = sum[code >> 1].force.data();
-      const __m256d sign = _mm256_castsi256_pd(_mm256_set1_epi64x(static_cast<long long>(code & 1) << 63));
-      f = _mm256_add_pd(f, _mm256_xor_pd(_mm256_maskload_pd(c, xyz), sign));
-      t = _mm256_add_pd(t, _mm256_mul_pd(r, _mm256_maskload_pd(c + 3, xyz)));
+      f = f + simd::flip_sign_if(code & 1, simd::load_xyz(c));
+      t = t + r * simd::load_xyz(c + 3);
     }
-    _mm256_store_pd(out.force[i].v.data(), f);  // a LoadSum's fourth double is never read
-    _mm256_store_pd(out.torque[i].v.data(), t);
+    simd::store_aligned(out.force[i].v.data(), f);  // a LoadSum's fourth double is never read
+    simd::store_aligned(out.torque[i].v.data(), t);
   }
 }
 #endif

@@ -4,6 +4,9 @@
 #include <cstring>
 #include <limits>
 
+#include "simd/lanes_avx2.hpp"
+#include "simd/layout.hpp"
+#include "simd/memory.hpp"
 #include "simd/simd.hpp"
 
 namespace dem {
@@ -38,32 +41,22 @@ long move_one_by_one(const MotionArrays& a, const MotionConstants& c, long first
 }
 
 #ifdef DEM_SIMD_LOOPS
-using simd::by_axis;
-using simd::by_particle;
+using lanes::Lanes4;
 
-// Four particles' padded loads [x y z -] as their vectors are laid out (simd/simd.hpp): [x0 y0 z0 x1],
-// [y1 z1 x2 y2], [z2 x3 y3 z3]. From loads, broadcasts and blends only (no shuffle across the
-// register's halves: those have one port, which the integration keeps busy already).
-[[gnu::target("avx2")]] inline void packed_loads(const LoadSum* s, __m256d out[3]) {
-  const double* f = s[0].v.data();  // 16 doubles: x y z - of each
-  out[0] = _mm256_blend_pd(_mm256_load_pd(f), _mm256_broadcast_sd(f + 4), 0b1000);  // [x0 y0 z0 -] with x1
-  out[1] = _mm256_blend_pd(_mm256_loadu_pd(f + 5), _mm256_broadcast_pd(reinterpret_cast<const __m128d*>(f + 8)), 0b1100);  // [y1 z1 - x2] with x2 y2
-  out[2] = _mm256_blend_pd(_mm256_loadu_pd(f + 11), _mm256_broadcast_sd(f + 10), 0b0001);  // [- x3 y3 z3] with z2
-}
-
-[[gnu::target("avx2")]] long move_four_at_a_time(const MotionArrays& a, const MotionConstants& c, long first, long last) {
-  const __m256d ar = _mm256_set1_pd(c.ar), br = _mm256_set1_pd(c.br), at = _mm256_set1_pd(c.at), bt = _mm256_set1_pd(c.bt);
-  const __m256d dt = _mm256_set1_pd(c.dt), two_fifths = _mm256_set1_pd(0.4), largest = _mm256_set1_pd(DBL_MAX);
-  const __m256d sign = _mm256_set1_pd(-0.0);
-  // Four particles' vectors in three registers (simd/simd.hpp), and what they are compared with:
-  // the period (an axis that is not periodic: no bound), to see which particles left it.
-  __m256d period_lo[3], period_hi[3];
+DEM_AVX2 long move_four_at_a_time(const MotionArrays& a, const MotionConstants& c, long first, long last) {
+  using simd::broadcast;
+  const Lanes4 ar = broadcast(c.ar), br = broadcast(c.br), at = broadcast(c.at), bt = broadcast(c.bt);
+  const Lanes4 dt = broadcast(c.dt), two_fifths = broadcast(0.4), largest = broadcast(DBL_MAX);
+  // Four particles' vectors in three registers (simd/layout.hpp: packed), and what they are
+  // compared with: the period (an axis that is not periodic: no bound), to see which particles
+  // left it.
+  Lanes4 period_lo[3], period_hi[3];
   Vec3 lo, hi;
   for (int axis = 0; axis < 3; ++axis) {
     lo[axis] = c.box.axis[axis] ? c.box.lo[axis] : -std::numeric_limits<double>::infinity();
     hi[axis] = c.box.axis[axis] ? c.box.hi[axis] : std::numeric_limits<double>::infinity();
   }
-  by_axis(lo, period_lo), by_axis(hi, period_hi);
+  simd::by_axis(lo, period_lo), simd::by_axis(hi, period_hi);
   long bad = -1;
   long i = first;
   for (; i + 4 <= last; i += 4) {
@@ -78,21 +71,21 @@ using simd::by_particle;
     double* const x = a.x[i].data();
     double* const v = a.v[i].data();
     double* const w = a.w[i].data();
-    const __m256d m = _mm256_loadu_pd(a.mass + i), r = _mm256_loadu_pd(a.radius + i);
-    __m256d to_v[3], to_w[3], force[3], torque[3];
-    by_particle(dt / m, to_v);                             // dt / m
-    by_particle(dt / (((two_fifths * m) * r) * r), to_w);  // dt / I, I = sphere_inertia(m, a)
-    packed_loads(a.force + i, force), packed_loads(a.torque + i, torque);
+    const Lanes4 m = simd::load(a.mass + i), r = simd::load(a.radius + i);
+    Lanes4 to_v[3], to_w[3], force[3], torque[3];
+    simd::by_particle(dt / m, to_v);                             // dt / m
+    simd::by_particle(dt / (((two_fifths * m) * r) * r), to_w);  // dt / I, I = sphere_inertia(m, a)
+    // Four particles' padded loads [x y z -] (sim/load_sum.hpp), packed as their vectors are.
+    simd::pack_padded(a.force[i].v.data(), force), simd::pack_padded(a.torque[i].v.data(), torque);
     int broken = 0, left = 0;
     for (int q = 0; q < 3; ++q) {
-      const __m256d vq = (ar * _mm256_loadu_pd(v + 4 * q) + force[q] * to_v[q]) * br;
-      const __m256d wq = (at * _mm256_loadu_pd(w + 4 * q) + torque[q] * to_w[q]) * bt;
-      const __m256d xq = _mm256_loadu_pd(x + 4 * q) + vq * dt;
-      _mm256_storeu_pd(v + 4 * q, vq), _mm256_storeu_pd(w + 4 * q, wq), _mm256_storeu_pd(x + 4 * q, xq);
+      const Lanes4 vq = (ar * simd::load(v + 4 * q) + force[q] * to_v[q]) * br;
+      const Lanes4 wq = (at * simd::load(w + 4 * q) + torque[q] * to_w[q]) * bt;
+      const Lanes4 xq = simd::load(x + 4 * q) + vq * dt;
+      simd::store(v + 4 * q, vq), simd::store(w + 4 * q, wq), simd::store(x + 4 * q, xq);
       // finite_state: |x + v + w| is NaN or above the largest double somewhere.
-      const __m256d sum = _mm256_andnot_pd(sign, (xq + vq) + wq);
-      broken |= _mm256_movemask_pd(_mm256_cmp_pd(sum, largest, _CMP_NLE_UQ));
-      left |= _mm256_movemask_pd(_mm256_or_pd(_mm256_cmp_pd(xq, period_hi[q], _CMP_GE_OQ), _mm256_cmp_pd(xq, period_lo[q], _CMP_LT_OQ)));
+      broken |= simd::bits(simd::not_less_or_equal(simd::abs((xq + vq) + wq), largest));
+      left |= simd::bits(simd::either(simd::greater_or_equal(xq, period_hi[q]), lanes::less(xq, period_lo[q])));
     }
     if (left)  // PeriodicBox::wrap, which leaves the others as they are
       for (long k = i; k < i + 4; ++k) c.box.wrap(a.x[k], a.image[k]);

@@ -2,6 +2,9 @@
 
 #include "contact/contact_law.hpp"
 #include "simd/lanes.hpp"
+#include "simd/lanes_avx2.hpp"
+#include "simd/layout.hpp"
+#include "simd/memory.hpp"
 #include "simd/simd.hpp"
 
 namespace dem {
@@ -14,62 +17,36 @@ using lanes::Mask4;
 using lanes::Triple;
 using V3 = Triple<Lanes4>;
 using Model = ContactModel<CundallNormal>;  // the model of every scene without bonds
-#define AVX2 [[gnu::target("avx2"), gnu::always_inline]] inline
 
-AVX2 Lanes4 gather(const double* base, __m128i index) { return simd::gather(base, index); }
-AVX2 V3 load_four(const Vec3* base, const int (&slot)[4]) {
-  __m256d x, y, z;
-  simd::load_four(base, slot[0], slot[1], slot[2], slot[3], x, y, z);
-  return {x, y, z};
-}
-AVX2 V3 load3(const double* x, const double* y, const double* z) { return {_mm256_loadu_pd(x), _mm256_loadu_pd(y), _mm256_loadu_pd(z)}; }
+DEM_AVX2_INLINE V3 load3(const double* x, const double* y, const double* z) { return {simd::load(x), simd::load(y), simd::load(z)}; }
+DEM_AVX2_INLINE V3 load_four(const Vec3* base, const int (&slot)[4]) { return simd::load_four(base, slot[0], slot[1], slot[2], slot[3]); }
 // One field of four lanes' pair parameters.
-AVX2 Lanes4 param(const PairParams* const (&pp)[4], double PairParams::*field) {
+DEM_AVX2_INLINE Lanes4 param(const PairParams* const (&pp)[4], double PairParams::*field) {
   return lanes::lanes4(pp[0]->*field, pp[1]->*field, pp[2]->*field, pp[3]->*field);
 }
 // What the law reads of four lanes' pair parameters, by PairParams' names (contact/contact_law.hpp).
 struct LawParams {
   Lanes4 kn, kt, mu, damping_n, damping_t, cohesion;
   Mask4 no_viscous_attraction;
-  AVX2 explicit LawParams(const PairParams* const (&pp)[4])
+  DEM_AVX2_INLINE explicit LawParams(const PairParams* const (&pp)[4])
       : kn(param(pp, &PairParams::kn)), kt(param(pp, &PairParams::kt)), mu(param(pp, &PairParams::mu)),
         damping_n(param(pp, &PairParams::damping_n)), damping_t(param(pp, &PairParams::damping_t)),
         cohesion(param(pp, &PairParams::cohesion)),
         no_viscous_attraction(lanes::mask4(pp[0]->no_viscous_attraction, pp[1]->no_viscous_attraction,
                                            pp[2]->no_viscous_attraction, pp[3]->no_viscous_attraction)) {}
 };
-struct Lanes {
-  alignas(32) double l[4];
-};
-AVX2 Lanes lanes_of(Lanes4 a) {
-  Lanes out;
-  _mm256_store_pd(out.l, a.v);
-  return out;
-}
-// Four lanes' vectors, one register each: [x y z 0] (a 4 x 4 transpose with a zero row).
-AVX2 void per_lane(const V3& a, __m256d (&out)[4]) {
-  const __m256d zero = _mm256_setzero_pd();
-  const __m256d xy_02 = _mm256_unpacklo_pd(a.x.v, a.y.v), xy_13 = _mm256_unpackhi_pd(a.x.v, a.y.v);  // x0 y0 x2 y2, x1 y1 x3 y3
-  const __m256d z_02 = _mm256_unpacklo_pd(a.z.v, zero), z_13 = _mm256_unpackhi_pd(a.z.v, zero);  // z0 0 z2 0, z1 0 z3 0
-  out[0] = _mm256_permute2f128_pd(xy_02, z_02, 0x20);
-  out[1] = _mm256_permute2f128_pd(xy_13, z_13, 0x20);
-  out[2] = _mm256_permute2f128_pd(xy_02, z_02, 0x31);
-  out[3] = _mm256_permute2f128_pd(xy_13, z_13, 0x31);
-}
-
 // What the first `count` of four contacts (k) leave: keep_pair_result's, lane by lane; each vector
 // written with one masked store of its three doubles (nothing written past it).
-AVX2 void keep_results(const PairLawArrays& a, const int (&k)[4], int count, const V3& spring, const V3& n, const V3& on_i,
-                       const V3& torque_per_radius) {
-  __m256d s[4], f[4], t[4], nl[4];
-  per_lane(spring, s), per_lane(on_i, f), per_lane(torque_per_radius, t);
-  if (a.keep_normals) per_lane(n, nl);
-  const __m256i xyz = _mm256_setr_epi64x(-1, -1, -1, 0);
+DEM_AVX2_INLINE void keep_results(const PairLawArrays& a, const int (&k)[4], int count, const V3& spring, const V3& n,
+                                  const V3& on_i, const V3& torque_per_radius) {
+  Lanes4 s[4], f[4], t[4], nl[4];
+  simd::per_lane(spring, s), simd::per_lane(on_i, f), simd::per_lane(torque_per_radius, t);
+  if (a.keep_normals) simd::per_lane(n, nl);
   for (int l = 0; l < count; ++l) {
-    _mm256_maskstore_pd(a.spring[k[l]].data(), xyz, s[l]);
-    _mm256_maskstore_pd(a.sum[k[l]].force.data(), xyz, f[l]);
-    _mm256_maskstore_pd(a.sum[k[l]].torque_per_radius.data(), xyz, t[l]);
-    if (a.keep_normals) _mm256_maskstore_pd(a.normal[k[l]].data(), xyz, nl[l]);
+    simd::store_xyz(a.spring[k[l]].data(), s[l]);
+    simd::store_xyz(a.sum[k[l]].force.data(), f[l]);
+    simd::store_xyz(a.sum[k[l]].torque_per_radius.data(), t[l]);
+    if (a.keep_normals) simd::store_xyz(a.normal[k[l]].data(), nl[l]);
   }
 }
 
@@ -77,8 +54,7 @@ AVX2 void keep_results(const PairLawArrays& a, const int (&k)[4], int count, con
 // CundallNormal, four contacts at a time (L = Lanes4): the same operations in the same order.
 // The law and the lane operations are always inlined here, where AVX2 is allowed.
 template <bool Fixed, bool Bonds>
-[[gnu::target("avx2")]] double cundall_law_avx2(const PairLawArrays a, const MaterialTable& materials, double dt,
-                                                              const FoundInChunk found, int m) {
+DEM_AVX2 double cundall_law_avx2(const PairLawArrays a, const MaterialTable& materials, double dt, const FoundInChunk found, int m) {
   if (m == 0) return 0;
   // Lanes past the last contact repeat it: computed, never kept.
   for (int q = m; q < m + 3; ++q)
@@ -96,28 +72,26 @@ template <bool Fixed, bool Bonds>
       for (int l = 0; l < 4; ++l) {
         const long ahead = found.contact[e + kAhead + l];
         const int i_ahead = a.slot_i[ahead], j_ahead = a.slot_j[ahead];
-        _mm_prefetch(reinterpret_cast<const char*>(a.v + i_ahead), _MM_HINT_T0);
-        _mm_prefetch(reinterpret_cast<const char*>(a.w + i_ahead), _MM_HINT_T0);
-        _mm_prefetch(reinterpret_cast<const char*>(a.v + j_ahead), _MM_HINT_T0);
-        _mm_prefetch(reinterpret_cast<const char*>(a.w + j_ahead), _MM_HINT_T0);
+        simd::prefetch(a.v + i_ahead);
+        simd::prefetch(a.w + i_ahead);
+        simd::prefetch(a.v + j_ahead);
+        simd::prefetch(a.w + j_ahead);
       }
-    const __m128i k = _mm_loadu_si128(reinterpret_cast<const __m128i*>(found.contact + e));
-    const __m128i i = simd::gather(a.slot_i, k), j = simd::gather(a.slot_j, k);
+    const simd::Ints4 k = simd::load(found.contact + e);
+    const simd::Ints4 i = simd::gather(a.slot_i, k), j = simd::gather(a.slot_j, k);
     alignas(16) int kl[4], il[4], jl[4];
-    _mm_store_si128(reinterpret_cast<__m128i*>(kl), k);
-    _mm_store_si128(reinterpret_cast<__m128i*>(il), i);
-    _mm_store_si128(reinterpret_cast<__m128i*>(jl), j);
+    simd::store_aligned(kl, k), simd::store_aligned(il, i), simd::store_aligned(jl, j);
 
     // Kinematics (eq. 2.11-2.12).
     LaneKinematics<Lanes4> c;
     const V3 d = load3(found.dx + e, found.dy + e, found.dz + e);
     const Lanes4 dist = lanes::root(dot(d, d));
     c.n = d * (Lanes4(1.0) / dist);
-    const Lanes4 ri = gather(a.radius, i), rj = gather(a.radius, j);
+    const Lanes4 ri = simd::gather(a.radius, i), rj = simd::gather(a.radius, j);
     c.overlap = (ri + rj) - dist;
     c.v_rel = load_four(a.v, jl) - load_four(a.v, il);
     c.w_arm = rj * load_four(a.w, jl) + ri * load_four(a.w, il);
-    const Lanes4 mi = gather(a.mass, i), mj = gather(a.mass, j);
+    const Lanes4 mi = simd::gather(a.mass, i), mj = simd::gather(a.mass, j);
     c.m_eff = (mi * mj) / (mi + mj);
     c.r_eff = (ri * rj) / (ri + rj);  // eq. H3 (the Cundall law reads none: compiled away)
     if constexpr (Fixed) {  // effective_mass: against a held particle, the other's mass
@@ -140,16 +114,16 @@ template <bool Fixed, bool Bonds>
     keep_results(a, kl, count, spring, c.n, f.on_i, torque_per_radius);
     // relative_overlap_if_larger's test on every lane with the group's first `worst`: where no lane
     // passes, none can with the larger values the loop below may reach (almost every group).
-    const __m256d bar = (_mm256_set1_pd(worst) * _mm256_min_pd(ri.v, rj.v)) * _mm256_set1_pd(1 - 1e-9);
-    if (_mm256_movemask_pd(_mm256_cmp_pd(c.overlap.v, bar, _CMP_GE_OQ)) != 0) {
-      const Lanes u = lanes_of(c.overlap);
+    const Lanes4 bar = (simd::broadcast(worst) * simd::min(ri, rj)) * simd::broadcast(1 - 1e-9);
+    if (simd::bits(simd::greater_or_equal(c.overlap, bar)) != 0) {
+      alignas(32) double u[4];
+      simd::store_aligned(u, c.overlap);
       for (int l = 0; l < count; ++l)
-        worst = std::max(worst, relative_overlap_if_larger(u.l[l], std::min(a.radius[il[l]], a.radius[jl[l]]), worst));
+        worst = std::max(worst, relative_overlap_if_larger(u[l], std::min(a.radius[il[l]], a.radius[jl[l]]), worst));
     }
   }
   return worst;
 }
-#undef AVX2
 
 }  // namespace
 #endif

@@ -5,8 +5,9 @@
 // L = double and the four-wide path with L = Lanes4. Each operation rounds alike in a lane and in
 // a scalar register (IEEE 754; no fused multiply-add is contracted), so both give the same bits.
 //
-// A four-wide caller is a [[gnu::target("avx2")]] function; the law and the operations below are
-// always inlined into it, where they become AVX2 instructions.
+// A four-wide caller is a [[gnu::target("avx2")]] function (DEM_AVX2, simd.hpp); the law and the
+// operations below are always inlined into it, where they become AVX2 instructions. What needs
+// AVX2 instructions of its own is in lanes_avx2.hpp, memory.hpp and layout.hpp.
 #include <cmath>
 
 #include "core/types.hpp"

@@ -1,0 +1,103 @@
+#pragma once
+// Four lanes to and from memory, for the four-wide loops (DEM_AVX2, simd.hpp): loads and stores,
+// a vector's three doubles with one masked load or store (nothing read or written past them),
+// gathers, four particles' vectors at once, the lanes that passed a test stored at the front, and
+// fetching into the cache.
+#include <array>
+
+#include "core/types.hpp"
+#include "simd/lanes.hpp"
+#include "simd/simd.hpp"
+
+#ifdef DEM_SIMD_LOOPS
+#include <immintrin.h>
+
+namespace dem::simd {
+
+using lanes::Lanes4;
+using lanes::Triple;
+
+// Four 32-bit indices (storage slots, places in a list): what a gather reads by.
+struct Ints4 {
+  __m128i v;
+};
+
+DEM_AVX2_INLINE Lanes4 load(const double* p) { return _mm256_loadu_pd(p); }
+DEM_AVX2_INLINE Ints4 load(const int* p) { return {_mm_loadu_si128(reinterpret_cast<const __m128i*>(p))}; }
+DEM_AVX2_INLINE void store(double* p, Lanes4 a) { _mm256_storeu_pd(p, a.v); }
+// p on a 32-byte boundary (16 bytes for ints).
+DEM_AVX2_INLINE void store_aligned(double* p, Lanes4 a) { _mm256_store_pd(p, a.v); }
+DEM_AVX2_INLINE void store_aligned(int* p, Ints4 a) { _mm_store_si128(reinterpret_cast<__m128i*>(p), a.v); }
+
+// [p0 p1 p2 0] (a Vec3's doubles), and the first three lanes into p[0..2].
+DEM_AVX2_INLINE Lanes4 load_xyz(const double* p) { return _mm256_maskload_pd(p, _mm256_setr_epi64x(-1, -1, -1, 0)); }
+DEM_AVX2_INLINE void store_xyz(double* p, Lanes4 a) { _mm256_maskstore_pd(p, _mm256_setr_epi64x(-1, -1, -1, 0), a.v); }
+
+// base[index] for four indices. (The masked forms: the plain ones start from an undefined
+// register, which GCC 12 warns may be used uninitialized.)
+DEM_AVX2_INLINE Lanes4 gather(const double* base, Ints4 index) {
+  return _mm256_mask_i32gather_pd(_mm256_setzero_pd(), base, index.v, _mm256_castsi256_pd(_mm256_set1_epi64x(-1)), 8);
+}
+DEM_AVX2_INLINE Ints4 gather(const int* base, Ints4 index) {
+  return {_mm_mask_i32gather_epi32(_mm_setzero_si128(), base, index.v, _mm_set1_epi32(-1), 4)};
+}
+
+// base[a], base[b], base[c], base[d] as x, y and z of the four: each vector read with one masked
+// load and the four transposed, in place of three gathers (pass 1 took 15 % fewer perf samples on
+// the chute so). The slots by value: read through a pointer here, pass 1's loop kept one more
+// pointer and spilled a register.
+DEM_AVX2_INLINE Triple<Lanes4> load_four(const Vec3* base, int a, int b, int c, int d) {
+  const __m256i xyz = _mm256_setr_epi64x(-1, -1, -1, 0);
+  const __m256d ra = _mm256_maskload_pd(base[a].data(), xyz), rb = _mm256_maskload_pd(base[b].data(), xyz);
+  const __m256d rc = _mm256_maskload_pd(base[c].data(), xyz), rd = _mm256_maskload_pd(base[d].data(), xyz);
+  const __m256d xz_ab = _mm256_unpacklo_pd(ra, rb), xz_cd = _mm256_unpacklo_pd(rc, rd);  // xa xb za zb, xc xd zc zd
+  const __m256d y_ab = _mm256_unpackhi_pd(ra, rb), y_cd = _mm256_unpackhi_pd(rc, rd);    // ya yb 0 0, yc yd 0 0
+  return {_mm256_permute2f128_pd(xz_ab, xz_cd, 0x20), _mm256_permute2f128_pd(y_ab, y_cd, 0x20),
+          _mm256_permute2f128_pd(xz_ab, xz_cd, 0x31)};
+}
+
+// For each set of lanes (a bit each, as bits() gives), the 32-bit lanes that move those lanes'
+// doubles to the front in order (a compress, which AVX2 lacks): lane q takes double l_q, i.e.
+// 32-bit lanes 2 l_q and 2 l_q + 1.
+constexpr std::array<std::array<int, 8>, 16> compress_doubles() {
+  std::array<std::array<int, 8>, 16> t{};
+  for (int mask = 0; mask < 16; ++mask) {
+    int q = 0;
+    for (int l = 0; l < 4; ++l)
+      if (mask >> l & 1) t[mask][2 * q] = 2 * l, t[mask][2 * q + 1] = 2 * l + 1, ++q;
+  }
+  return t;
+}
+// The same for four 32-bit lanes, in the low half.
+constexpr std::array<std::array<int, 8>, 16> compress_ints() {
+  std::array<std::array<int, 8>, 16> t{};
+  for (int mask = 0; mask < 16; ++mask) {
+    int q = 0;
+    for (int l = 0; l < 4; ++l)
+      if (mask >> l & 1) t[mask][q++] = l;
+  }
+  return t;
+}
+// Internal linkage (constexpr): each file that uses them reads its own copy directly.
+alignas(32) constexpr std::array<std::array<int, 8>, 16> kCompressDoubles = compress_doubles();
+alignas(32) constexpr std::array<std::array<int, 8>, 16> kCompressInts = compress_ints();
+
+// The lanes of a set in `keep` (bits), in order, stored from `to` on. Four doubles are written:
+// those past the kept lanes hold others.
+DEM_AVX2_INLINE void store_compressed(double* to, Lanes4 a, int keep) {
+  const __m256i to_front = _mm256_load_si256(reinterpret_cast<const __m256i*>(kCompressDoubles[keep].data()));
+  _mm256_storeu_pd(to, _mm256_castsi256_pd(_mm256_permutevar8x32_epi32(_mm256_castpd_si256(a.v), to_front)));
+}
+// first + l for each lane l set in `keep` (bits), in order, stored from `to` on. Four ints are
+// written: those past the kept lanes hold others.
+DEM_AVX2_INLINE void store_compressed_indices(int* to, int first, int keep) {
+  const __m256i indices = _mm256_add_epi32(_mm256_set1_epi32(first), _mm256_setr_epi32(0, 1, 2, 3, 0, 0, 0, 0));
+  const __m256i to_front = _mm256_load_si256(reinterpret_cast<const __m256i*>(kCompressInts[keep].data()));
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(to), _mm256_castsi256_si128(_mm256_permutevar8x32_epi32(indices, to_front)));
+}
+
+// The cache line holding p fetched into every level ahead of its use.
+DEM_AVX2_INLINE void prefetch(const void* p) { _mm_prefetch(static_cast<const char*>(p), _MM_HINT_T0); }
+
+}  // namespace dem::simd
+#endif
