@@ -15,7 +15,7 @@
 #include <string>
 
 #include "settle_scene.hpp"
-#include "sim/force_loop.hpp"
+#include "forces/force_loop.hpp"
 #include "sim/simulation.hpp"
 
 using namespace dem;
@@ -128,7 +128,7 @@ void variants() {
           sim.walls.push_back(w);
         }
       if (c.bonds) sim.bond_present_contacts(true);
-      variant = variant_name(choose_force_variant(sim));
+      variant = variant_name(choose_force_variant(sim.materials, sim.has_bonds()));
       omp_set_num_threads(t == 0 ? 1 : 2);
       const int steps = 300;
       const auto t0 = std::chrono::steady_clock::now();

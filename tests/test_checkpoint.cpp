@@ -169,7 +169,7 @@ TEST_F(CheckpointTest, WritingFreesTheContactViewsWhichComeBackTheSame) {
   EXPECT_EQ(sim_.pair_contacts().size(), sim_.pair_contact_count());
 }
 
-// Periodic boundaries (the period, each particle's image counts) and held particles come back
+// Periodic boundaries (the period, each particle's image counts) and fixed particles come back
 // exactly, and a run continued from the file equals one continued in memory.
 TEST_F(CheckpointTest, PeriodicAndFixedRoundTrip) {
   // The cloud has spread beyond the generation box (no side walls): a period around it, one
@@ -181,9 +181,9 @@ TEST_F(CheckpointTest, PeriodicAndFixedRoundTrip) {
   for (const Vec3& x : sim_.particles.x) box.lo.x() = std::min(box.lo.x(), x.x() - 0.0015), box.hi.x() = std::max(box.hi.x(), x.x() + 0.0015);
   sim_.set_periodic(box);
   sim_.params.max_energy_gain = 0;  // the test adds a drift by hand: energy the check would flag
-  std::size_t held = 0;
+  std::size_t fixed = 0;
   for (std::size_t k = 0; k < sim_.particles.size(); ++k) {
-    if (k % 4 == 0) sim_.particles.fixed[k] = 1, sim_.particles.v[k] = sim_.particles.w[k] = Vec3::Zero(), ++held;
+    if (k % 4 == 0) sim_.particles.fixed[k] = 1, sim_.particles.v[k] = sim_.particles.w[k] = Vec3::Zero(), ++fixed;
     else sim_.particles.v[k].x() += 3.0;  // a drift along x: some cross the boundary
   }
   for (int k = 0; k < 1000; ++k) sim_.advance();
@@ -197,7 +197,7 @@ TEST_F(CheckpointTest, PeriodicAndFixedRoundTrip) {
   EXPECT_TRUE(s.periodic == box);
   EXPECT_EQ(s.particles.image, sim_.particles.image);
   EXPECT_EQ(s.particles.fixed, sim_.particles.fixed);
-  EXPECT_EQ(std::count(s.particles.fixed.begin(), s.particles.fixed.end(), 1), static_cast<long>(held));
+  EXPECT_EQ(std::count(s.particles.fixed.begin(), s.particles.fixed.end(), 1), static_cast<long>(fixed));
   for (int k = 0; k < 500; ++k) s.advance(), sim_.advance();
   EXPECT_EQ(s.particles.x, sim_.particles.x);
   EXPECT_EQ(s.particles.v, sim_.particles.v);

@@ -17,8 +17,8 @@
 #include "sim/energy_audit.hpp"
 #include "io/checkpoint.hpp"
 #include "post/contact_forces.hpp"
-#include "sim/block_times.hpp"
-#include "sim/force_loop.hpp"
+#include "core/block_times.hpp"
+#include "forces/force_loop.hpp"
 #include "simd/simd.hpp"
 #include "sim/simulation.hpp"
 
@@ -393,7 +393,7 @@ TEST(Determinism, StorageOrderChangesNoBit) {
   EXPECT_TRUE(same_bits(plain.pair_contacts().spring, sorted.pair_contacts().spring));
 }
 
-// The threads' shares of a blocked loop (sim/block_times.hpp): contiguous runs that cover every
+// The threads' shares of a blocked loop (core/block_times.hpp): contiguous runs that cover every
 // block once, each ending at the block boundary nearest its share of the last step's times.
 TEST(BlockTimes, RunsCoverEveryBlockOnceAndEndNearestTheirShare) {
   BlockTimes t;

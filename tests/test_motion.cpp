@@ -1,4 +1,4 @@
-// The step of motion (sim/motion.hpp): four particles at a time (AVX2) must give the bits of one
+// The step of motion (integrate/motion.hpp): four particles at a time (AVX2) must give the bits of one
 // by one, and both the definition of eq. 2.38-2.47 written out here, coordinate by coordinate:
 // v' = (a_r v + F dt / m) b_r with F the net load of the force loop, w' likewise with
 // I = 2/5 m a^2, x' = x + v' dt; held particles stop; the last particle whose state is not finite
@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "sim/motion.hpp"
+#include "integrate/motion.hpp"
 #include "simd/simd.hpp"
 
 #include "same_bits.hpp"

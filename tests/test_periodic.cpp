@@ -1,7 +1,7 @@
-// Periodic boundaries and particles held in place, against closed-form answers: a head-on collision
+// Periodic boundaries and particles fixed in place, against closed-form answers: a head-on collision
 // across a periodic boundary has the restitution eta of the material (Tsuji's damping, eq.
 // 2.27-2.29) and conserves momentum, as the same collision inside the period; a sphere bouncing on a
-// held sphere rebounds with -eta v (the held one is infinitely heavy, as LAMMPS's fix freeze); and a
+// fixed sphere rebounds with -eta v (the fixed one is infinitely heavy, as LAMMPS's fix freeze); and a
 // periodic chute (gravity along a periodic axis) does not trip the energy check, whose potential
 // energy counts the periods each particle has crossed.
 #include <gtest/gtest.h>
@@ -84,10 +84,10 @@ TEST(Fixed, BounceOnAHeldSphereHasRestitutionEta) {
     sim.particles.add(1, Vec3(0, 0, 2.2 * a), a, 2500, 0);
     sim.particles.v[1] = Vec3(0, 0, -v0);
     ASSERT_TRUE(collide(sim));
-    // m* = m of the moving sphere (the held one is infinitely heavy): it rebounds at eta v0,
+    // m* = m of the moving sphere (the fixed one is infinitely heavy): it rebounds at eta v0,
     // within 1 % as against a wall (tests/test_contact_physics.cpp).
     EXPECT_NEAR(sim.particles.v[1].z(), eta * v0, 0.01 * eta * v0) << "eta " << eta;
-    EXPECT_EQ(sim.particles.x[0], Vec3::Zero()) << "a held particle never moves";
+    EXPECT_EQ(sim.particles.x[0], Vec3::Zero()) << "a fixed particle never moves";
     EXPECT_EQ(sim.particles.v[0], Vec3::Zero());
     EXPECT_EQ(sim.particles.w[0], Vec3::Zero());
   }

@@ -1,9 +1,9 @@
-// The force loop's four-wide versions (simd/simd.hpp) are speed only. Pass 1 (sim/find_contacts.hpp,
+// The force loop's four-wide versions (simd/simd.hpp) are speed only. Pass 1 (forces/find_contacts.hpp,
 // which candidates are contacts) must decide exactly as the plain loop and as the definition
 // (|x_j - x_i| < a_i + a_j through the nearest image, or bonded; the neighbour list never pairs
-// two held particles), with the same separations to the bit; pass 2 (sim/pair_law.hpp, the
+// two fixed particles), with the same separations to the bit; pass 2 (forces/cundall_four_wide.hpp, the
 // Cundall law) must end a run with the plain loops' bits, with everything the law has: two
-// materials, held particles, periodic boundaries, sticking and sliding springs, bonds with
+// materials, fixed particles, periodic boundaries, sticking and sliding springs, bonds with
 // cohesion, clipped viscous attraction.
 #include <gtest/gtest.h>
 
@@ -15,7 +15,7 @@
 
 #include "core/error.hpp"
 #include "generation/fill.hpp"
-#include "sim/find_contacts.hpp"
+#include "forces/find_contacts.hpp"
 #include "simd/simd.hpp"
 #include "sim/simulation.hpp"
 
@@ -32,8 +32,8 @@ struct Pass1Result {
   std::vector<Vec3> spring;
 };
 
-// Random polydisperse particles in a box periodic along x and y, a third of them held; candidates
-// are random pairs (never two held particles: the neighbour list leaves those out), a third of
+// Random polydisperse particles in a box periodic along x and y, a third of them fixed; candidates
+// are random pairs (never two fixed particles: the neighbour list leaves those out), a third of
 // them moved to touch within a few ulps of a_i + a_j (either side), some across the periodic
 // boundaries; random bonds and random contacts of the last step.
 struct Pass1Case {
@@ -140,7 +140,7 @@ TEST(SimdLoops, PassOneDecidesAsTheDefinitionWithThePlainLoopsBits) {
 
 // Spheres of two materials (one clips viscous attraction) with random speeds, grown by 15 % where
 // they were placed apart, so that they press on each other (a dense, jammed packing: 65 % of the
-// volume), in a box periodic along x and y, a floor of them held; after 400 steps every contact present is
+// volume), in a box periodic along x and y, a floor of them fixed; after 400 steps every contact present is
 // bonded (cohesion: the Cundall law's bonded failure surface), then 1000 steps more.
 Simulation law_scene() {
   Simulation sim;

@@ -10,7 +10,7 @@
 #include <random>
 
 #include "search/neighbour_list.hpp"
-#include "sim/force_loop.hpp"
+#include "forces/force_loop.hpp"
 #include "sim/simulation.hpp"
 #include "walls/wall.hpp"
 

@@ -196,7 +196,7 @@ void write_particles_vtu(const std::string& path, const Particles& p, const std:
   pd->AddArray(vector_array("velocity", p.v));
   pd->AddArray(vector_array("angular_velocity", p.w));
   pd->AddArray(material);
-  if (p.any_fixed()) {  // only where a stage held some in place
+  if (p.any_fixed()) {  // only where a stage fixed some in place
     auto fixed = vtkSmartPointer<vtkTypeUInt8Array>::New();
     fixed->SetName("fixed");
     fixed->SetNumberOfValues(vn);

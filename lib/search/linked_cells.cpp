@@ -150,7 +150,7 @@ void LinkedCells::find_near_pairs(const Particles& p, const PeriodicBox& box, st
     std::vector<FoundContact>& mine = parts_[omp_get_thread_num()].found;
     mine.clear();
     auto test = [&, x, radius, fixed, id](int a, int b) {
-      if (both_held(fixed[a], fixed[b])) return;
+      if (both_fixed(fixed[a], fixed[b])) return;
       const double r = radius[a] + radius[b];
       const double d2 = (periodic ? box.nearest(x[a] - x[b]) : Vec3(x[a] - x[b])).squaredNorm();
       if (d2 < (r + margin) * (r + margin)) {

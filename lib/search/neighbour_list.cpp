@@ -20,7 +20,7 @@ bool NeighbourList::needs_rebuild(const Particles& p, const PeriodicBox& box, co
   // particle's displacement plus the wall's (a planar polygon moves no further than its vertices).
   // Across a periodic boundary the displacement is the nearest image's.
   double dp2 = 0;
-  int changed = 0;  // ids or held flags
+  int changed = 0;  // ids or fixed flags
   const long n = static_cast<long>(p.size());
 #pragma omp parallel reduction(max : dp2) reduction(| : changed)
   {

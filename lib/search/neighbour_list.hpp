@@ -2,7 +2,7 @@
 // Verlet neighbour list with a skin (DESIGN.md "Choices that decide speed"): candidate pairs closer
 // than touching + margin + skin, found with linked cells, rebuilt only when a particle (or wall)
 // may have moved far enough to create a contact the list does not hold, or when the particles or
-// their held flags changed (pairs of two held particles are no candidates). Which steps rebuild
+// their fixed flags changed (pairs of two fixed particles are no candidates). Which steps rebuild
 // never changes the contacts found, so results do not depend on it (restart-exact).
 #include <cstdint>
 #include <vector>
@@ -49,7 +49,7 @@ class NeighbourList {
   std::vector<int> pair_groups_;
   std::vector<Vec3> x_build_;
   std::vector<Index> id_build_;
-  std::vector<std::uint8_t> fixed_build_;  // the held flags at the last build
+  std::vector<std::uint8_t> fixed_build_;  // the fixed flags at the last build
   std::vector<Vec3> wall_build_;  // every element's vertices at the last build, 4 per element
   double margin_build_ = -1, skin_build_ = -1;
   PeriodicBox box_build_;

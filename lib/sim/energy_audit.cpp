@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "contact/model_table.hpp"
-#include "sim/force_loop.hpp"
+#include "forces/force_loop.hpp"
 
 namespace dem {
 

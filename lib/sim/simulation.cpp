@@ -12,8 +12,8 @@
 
 #include <omp.h>
 
-#include "sim/force_loop.hpp"
-#include "sim/motion.hpp"
+#include "forces/force_loop.hpp"
+#include "integrate/motion.hpp"
 #include "simd/simd.hpp"
 #include "core/error.hpp"
 
@@ -41,7 +41,7 @@ void Simulation::compute_forces() {
   const BodyForces body{params.gravity};
   ForceBlocks loads{params.load_block, block_first_, block_needs_, needed_from_, by_key_start_, by_key_, force_times_,
                     block_done_,       ++force_epoch_, body,       simd_loops_on(), block_force_, block_torque_};
-  const double worst_overlap = compute_contact_forces(in, choose_force_variant(*this), pairs_, walls_, loads);
+  const double worst_overlap = compute_contact_forces(in, choose_force_variant(materials, has_bonds()), pairs_, walls_, loads);
   pair_results_kept_ = params.keep_pair_results;
   contacts_modified();
   if (worst_overlap > params.max_overlap) report_overlap(worst_overlap);
@@ -339,7 +339,7 @@ void Simulation::integrate(bool any_fixed) {
   const long n = static_cast<long>(p.size());
   long bad = -1;
   // Each thread takes a contiguous run of blocks of particles (load_block slots each) sized by
-  // their times at the last step (sim/block_times.hpp): close to its run in the force loop, so its
+  // their times at the last step (core/block_times.hpp): close to its run in the force loop, so its
   // particles' loads and positions are in its core's cache. (Split evenly, a thread read half its
   // particles from the other core's cache.)
   const long block = params.load_block;

@@ -5,9 +5,9 @@
 #include <vector>
 
 #include "contact/contact_list.hpp"
-#include "sim/block_times.hpp"
+#include "core/block_times.hpp"
 #include "sim/energy_audit.hpp"
-#include "sim/load_sum.hpp"
+#include "state/load_sum.hpp"
 #include "search/neighbour_list.hpp"
 #include "state/materials.hpp"
 #include "state/particles.hpp"
@@ -31,7 +31,7 @@ struct SimParams {
   // follow the storage order, so both the particle and the contact loops become local: a
   // 100,000-sphere gen-primary settle to t = 0.4 s took 134 s sorted every 1,000 steps against 204 s
   // never sorted (bench/results/locality.md). Speed only: each particle's loads are summed in
-  // an order of its own (its contacts' keys; sim/force_loop.hpp ForceBlocks), so no storage order
+  // an order of its own (its contacts' keys; forces/force_loop.hpp ForceBlocks), so no storage order
   // changes a bit.
   long sort_every = 1000;
   long sort_min_particles = 10000;

@@ -14,9 +14,9 @@ namespace dem {
 inline double sphere_volume(double a) { return 4.0 / 3.0 * std::numbers::pi * a * a * a; }
 inline double sphere_mass(double density, double a) { return density * sphere_volume(a); }  // m = rho 4/3 pi a^3
 inline double sphere_inertia(double m, double a) { return 0.4 * m * a * a; }  // I = 2/5 m a^2
-// Two held particles never interact (the search skips such pairs; the neighbour list is rebuilt
-// when a held flag changes).
-inline bool both_held(std::uint8_t fixed_i, std::uint8_t fixed_j) { return fixed_i && fixed_j; }
+// Two fixed particles never interact (the search skips such pairs; the neighbour list is rebuilt
+// when a fixed flag changes).
+inline bool both_fixed(std::uint8_t fixed_i, std::uint8_t fixed_j) { return fixed_i && fixed_j; }
 
 struct Particles {
   std::vector<Index> id;
@@ -28,8 +28,8 @@ struct Particles {
   std::vector<double> radius;  // [m]
   std::vector<double> mass;    // [kg], m = rho 4/3 pi a^3
   std::vector<int> material;   // index into the material table
-  // 1: held in place (as LAMMPS's fix freeze: a rough base of spheres, a fixed boundary layer):
-  // never moves, and acts on others as if infinitely heavy; two held particles do not interact.
+  // 1: fixed in place (as LAMMPS's fix freeze: a rough base of spheres, a fixed boundary layer):
+  // never moves, and acts on others as if infinitely heavy; two fixed particles do not interact.
   std::vector<std::uint8_t> fixed;
 
   std::size_t size() const { return id.size(); }
@@ -47,8 +47,8 @@ struct Particles {
     fixed.push_back(0);
   }
 
-  bool both_fixed(std::size_t i, std::size_t j) const { return both_held(fixed[i], fixed[j]); }
-  // Whether any particle is held (read every step: memchr scans 10^5 flags in a few microseconds).
+  bool both_fixed(std::size_t i, std::size_t j) const { return dem::both_fixed(fixed[i], fixed[j]); }
+  // Whether any particle is fixed (read every step: memchr scans 10^5 flags in a few microseconds).
   bool any_fixed() const { return !fixed.empty() && std::memchr(fixed.data(), 1, fixed.size()) != nullptr; }
 
   double inertia(std::size_t k) const { return sphere_inertia(mass[k], radius[k]); }

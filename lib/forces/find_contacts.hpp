@@ -1,6 +1,6 @@
 #pragma once
 // Pass 1 of the force loop: which pair candidates of a chunk are contacts (touching, or held by a
-// bond). The others get no force and lose their history. Pass 2 (pair_law.hpp) then runs the
+// bond). The others get no force and lose their history. Pass 2 (cundall_four_wide.hpp) then runs the
 // law on the contacts found, without an unpredictable branch, on the separations found here.
 //
 // Two versions give the same bits: a plain loop, and one that tests four candidates at once with
@@ -11,7 +11,7 @@
 
 #include "contact/contact_list.hpp"
 #include "core/types.hpp"
-#include "sim/force_loop.hpp"
+#include "forces/force_loop.hpp"
 #include "state/particles.hpp"
 #include "state/periodic.hpp"
 
@@ -50,8 +50,8 @@ struct FoundInChunk {
 
 // Candidates [first, last): sets active (touching or bonded), clears the spring and sum of a contact
 // lost, and stores each contact's position and separation in `found` in candidate order. Returns
-// how many. (No candidate joins two held particles: the neighbour list leaves those out and is
-// rebuilt when a held flag changes, which drops their history, bonds included.) `simd`: the
+// how many. (No candidate joins two fixed particles: the neighbour list leaves those out and is
+// rebuilt when a fixed flag changes, which drops their history, bonds included.) `simd`: the
 // four-wide version (simd_loops_on()).
 // The arrays are taken by value: a copy that the loop's stores cannot change, so their addresses
 // stay in registers.

@@ -1,4 +1,4 @@
-#include "sim/force_loop.hpp"
+#include "forces/force_loop.hpp"
 
 #include <omp.h>
 
@@ -12,12 +12,11 @@
 
 #include "contact/contact_law.hpp"
 #include "contact/model_table.hpp"
-#include "sim/find_contacts.hpp"
-#include "sim/pair_law.hpp"
+#include "forces/find_contacts.hpp"
+#include "forces/cundall_four_wide.hpp"
 #include "simd/lanes_avx2.hpp"
 #include "simd/memory.hpp"
 #include "simd/simd.hpp"
-#include "sim/simulation.hpp"
 
 namespace dem {
 
@@ -47,7 +46,7 @@ struct ChunkInput {
 };
 
 // The candidates [first, last) of one block. Periodic: distances to the nearest image; Fixed: some
-// particles are held in place. Both are template parameters so that a scene without them pays
+// particles are fixed in place. Both are template parameters so that a scene without them pays
 // nothing.
 template <class Normal, bool Periodic, bool Fixed>
 double pair_chunk(const ChunkInput& chunk, long first, long last) {
@@ -60,7 +59,7 @@ double pair_chunk(const ChunkInput& chunk, long first, long last) {
   double dx[kChunk + kFoundPadding], dy[kChunk + kFoundPadding], dz[kChunk + kFoundPadding];
   const FoundInChunk found{contact, dx, dy, dz};
   const int m = find_contacts<Periodic>(chunk.candidates, box, first, last, found, chunk.simd);
-  // Pass 2 (pair_law.hpp): the law on them.
+  // Pass 2 (cundall_four_wide.hpp): the law on them.
   if constexpr (std::is_same_v<Normal, CundallNormal>)
     if (chunk.simd && m >= kMinSimdLaw) return cundall_pair_law_simd<Fixed>(a, materials, dt, found, m, chunk.in.any_bonds);
   // Pass 2, in three loops over the chunk's contacts: their kinematics, their springs turned into
@@ -259,7 +258,7 @@ double block_forces(const ForceLoopInput& in, ContactList& pc, ContactList& wc, 
   {
     const long threads = omp_get_num_threads(), t = omp_get_thread_num();
     // Each thread takes a contiguous run of blocks holding about its share of the last step's
-    // time (sim/block_times.hpp): candidates are stored along the particles' order, so a thread
+    // time (core/block_times.hpp): candidates are stored along the particles' order, so a thread
     // mostly reads particles that stay in its own core's cache.
     const long start = out.times.run_start(t, threads), end = out.times.run_start(t + 1, threads);
     static thread_local WallScratch scratch;
@@ -362,7 +361,7 @@ void select_wall_contacts(const Vec3* to_wall, const std::uint8_t* touching, int
   }
 }
 
-ForceVariant choose_force_variant(const Simulation& sim) { return sim.materials.common_law(sim.has_bonds()); }
+ForceVariant choose_force_variant(const MaterialTable& materials, bool any_bonds) { return materials.common_law(any_bonds); }
 
 std::string variant_name(ForceVariant v) { return v ? std::string(normal_law_name(*v)) : "mixed"; }
 

@@ -1,6 +1,6 @@
 #pragma once
 // One step of motion (eq. 2.38-2.47) once the force loop has summed each particle's net load
-// (sim/force_loop.hpp ForceBlocks): its new velocities and position. Four particles at a time with
+// (forces/force_loop.hpp ForceBlocks): its new velocities and position. Four particles at a time with
 // AVX2 (simd/simd.hpp) where the processor has it, else one by one: per coordinate the same
 // operations in the same order, so the same bits.
 #include <cfloat>
@@ -8,7 +8,7 @@
 #include <cstdint>
 
 #include "core/types.hpp"
-#include "sim/load_sum.hpp"
+#include "state/load_sum.hpp"
 #include "state/particles.hpp"
 #include "state/periodic.hpp"
 
@@ -29,12 +29,12 @@ struct MotionArrays {
   Vec3i* image;  // periods crossed
   const double* mass;
   const double* radius;
-  const std::uint8_t* fixed;  // null where no particle is held
+  const std::uint8_t* fixed;  // null where no particle is fixed
   const LoadSum* force;       // the net loads of the force loop (ForceBlocks)
   const LoadSum* torque;
 };
 
-// Particles [first, last): held ones stop, the others move (and are wrapped into the period).
+// Particles [first, last): fixed ones stop, the others move (and are wrapped into the period).
 // Returns the last particle whose new state is not finite (NaN or Inf in x, v or w makes a
 // coordinate of x + v + w NaN or Inf; so does a sum beyond 1e308: a state as broken), or -1.
 long move_particles(const MotionArrays& a, const MotionConstants& c, long first, long last);

@@ -1,4 +1,4 @@
-#include "sim/pair_law.hpp"
+#include "forces/cundall_four_wide.hpp"
 
 #include "contact/contact_law.hpp"
 #include "simd/lanes.hpp"
@@ -94,10 +94,10 @@ DEM_AVX2 double cundall_law_avx2(const PairLawArrays a, const MaterialTable& mat
     const Lanes4 mi = simd::gather(a.mass, i), mj = simd::gather(a.mass, j);
     c.m_eff = (mi * mj) / (mi + mj);
     c.r_eff = (ri * rj) / (ri + rj);  // eq. H3 (the Cundall law reads none: compiled away)
-    if constexpr (Fixed) {  // effective_mass: against a held particle, the other's mass
-      const std::uint8_t* held = a.fixed;
-      c.m_eff = lanes::select(lanes::mask4(held[il[0]], held[il[1]], held[il[2]], held[il[3]]), mj,
-                              lanes::select(lanes::mask4(held[jl[0]], held[jl[1]], held[jl[2]], held[jl[3]]), mi, c.m_eff));
+    if constexpr (Fixed) {  // effective_mass: against a fixed particle, the other's mass
+      const std::uint8_t* fixed = a.fixed;
+      c.m_eff = lanes::select(lanes::mask4(fixed[il[0]], fixed[il[1]], fixed[il[2]], fixed[il[3]]), mj,
+                              lanes::select(lanes::mask4(fixed[jl[0]], fixed[jl[1]], fixed[jl[2]], fixed[jl[3]]), mi, c.m_eff));
     }
     if (materials.size() > 1) {
       const PairParams* pp[4];

@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "contact/contact_list.hpp"
-#include "sim/block_times.hpp"
-#include "sim/body_forces.hpp"
-#include "sim/load_sum.hpp"
+#include "core/block_times.hpp"
+#include "forces/body_forces.hpp"
+#include "state/load_sum.hpp"
 #include "state/materials.hpp"
 #include "state/particles.hpp"
 #include "state/periodic.hpp"
@@ -29,7 +29,7 @@ struct ForceLoopInput {
   const std::vector<int>& wall_run_order;   // the runs by their particle's storage slot
   const std::vector<int>& wall_block_first; // per load block, its first run in wall_run_order (+ the end)
   const PeriodicBox& periodic;
-  bool any_fixed;  // some particle is held in place (Particles::fixed)
+  bool any_fixed;  // some particle is fixed in place (Particles::fixed)
   bool any_bonds;  // some contact is bonded (Simulation::has_bonds)
   double dt;
   bool keep_pair_results;  // SimParams::keep_pair_results
@@ -73,7 +73,7 @@ void set_lagging_thread_for_tests(int thread, int microseconds);
 // while no contact is bonded, the law each acts as then: liu and mendes act exactly as cundall),
 // or none: the law chosen per contact ("mixed").
 using ForceVariant = std::optional<NormalLaw>;
-ForceVariant choose_force_variant(const Simulation& sim);
+ForceVariant choose_force_variant(const MaterialTable& materials, bool any_bonds);
 std::string variant_name(ForceVariant v);
 
 // x_j - x_i, through the nearest image where boundaries are periodic. The force loop is compiled
@@ -91,7 +91,7 @@ inline Vec3 separation(const Particles& p, const PeriodicBox& box, int i, int j)
   return box.any() ? separation<true>(p, box, i, j) : separation<false>(p, box, i, j);
 }
 
-// The mass of eq. 2.26's damping for a pair: m_i m_j / (m_i + m_j), or against a particle held in
+// The mass of eq. 2.26's damping for a pair: m_i m_j / (m_i + m_j), or against a particle fixed in
 // place (infinitely heavy, as in LAMMPS's fix freeze) the other's mass.
 inline double effective_mass(double mass_i, double mass_j, bool fixed_i, bool fixed_j) {
   if (fixed_i) return mass_j;

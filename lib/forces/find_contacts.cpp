@@ -1,4 +1,4 @@
-#include "sim/find_contacts.hpp"
+#include "forces/find_contacts.hpp"
 
 #include <cstring>
 

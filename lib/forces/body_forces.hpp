@@ -1,6 +1,6 @@
 #pragma once
 // Body forces: loads that act on each particle alone, from its own state and the scene's fields.
-// The force loop adds them to a particle's net load after its contacts (sim/force_loop.hpp
+// The force loop adds them to a particle's net load after its contacts (forces/force_loop.hpp
 // ForceBlocks), in the order of the members below, so that the order of every sum is fixed.
 // Gravity is the first; a new body force (fluid drag, say) is a member here and one more term in
 // add_to, after those already there (docs/architecture.md).

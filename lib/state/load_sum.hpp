@@ -1,7 +1,7 @@
 #pragma once
-// A particle's net force or torque as the force loop leaves it (sim/force_loop.hpp ForceBlocks),
+// A particle's net force or torque as the force loop leaves it (forces/force_loop.hpp ForceBlocks),
 // padded to four doubles and aligned to 32 bytes, so that the four-wide integration
-// (sim/motion.cpp) reads four particles' loads with aligned loads and blends. The fourth double is
+// (integrate/motion.cpp) reads four particles' loads with aligned loads and blends. The fourth double is
 // never read.
 #include "core/types.hpp"
 

@@ -1,7 +1,7 @@
 #pragma once
 // Pass 2 of the force loop: the law on the contacts pass 1 found (find_contacts.hpp), and what
 // each contact leaves behind: its sum (force on i and n x f_t), which each of its particles adds in
-// the order of its contacts' keys (sim/force_loop.hpp), and its normal where kept.
+// the order of its contacts' keys (forces/force_loop.hpp), and its normal where kept.
 //
 // The plain version is three loops in force_loop.cpp (any law); a law written over lanes
 // (contact/contact_law.hpp, simd/lanes.hpp; CundallNormal, the law of every scene without bonds)
@@ -11,7 +11,7 @@
 
 #include "contact/contact_list.hpp"
 #include "core/types.hpp"
-#include "sim/find_contacts.hpp"
+#include "forces/find_contacts.hpp"
 #include "state/materials.hpp"
 #include "state/particles.hpp"
 

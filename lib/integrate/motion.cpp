@@ -1,4 +1,4 @@
-#include "sim/motion.hpp"
+#include "integrate/motion.hpp"
 
 #include <algorithm>
 #include <cstring>
@@ -19,7 +19,7 @@ inline bool finite_state(const MotionArrays& a, long i) {
   return (std::abs(s.x()) <= DBL_MAX) & (std::abs(s.y()) <= DBL_MAX) & (std::abs(s.z()) <= DBL_MAX);
 }
 
-// Particle i: held, it stops; free, it moves under its net load (eq. 2.31-2.34). False where its
+// Particle i: fixed, it stops; free, it moves under its net load (eq. 2.31-2.34). False where its
 // new state is not finite.
 inline bool move_one(const MotionArrays& a, const MotionConstants& c, long i) {
   if (a.fixed && a.fixed[i]) {
@@ -61,9 +61,9 @@ DEM_AVX2 long move_four_at_a_time(const MotionArrays& a, const MotionConstants& 
   long i = first;
   for (; i + 4 <= last; i += 4) {
     if (a.fixed) {
-      std::uint32_t held;
-      std::memcpy(&held, a.fixed + i, 4);
-      if (held) {  // one by one
+      std::uint32_t fixed;
+      std::memcpy(&fixed, a.fixed + i, 4);
+      if (fixed) {  // one by one
         bad = std::max(bad, move_one_by_one(a, c, i, i + 4));
         continue;
       }
@@ -75,7 +75,7 @@ DEM_AVX2 long move_four_at_a_time(const MotionArrays& a, const MotionConstants& 
     Lanes4 to_v[3], to_w[3], force[3], torque[3];
     simd::by_particle(dt / m, to_v);                             // dt / m
     simd::by_particle(dt / (((two_fifths * m) * r) * r), to_w);  // dt / I, I = sphere_inertia(m, a)
-    // Four particles' padded loads [x y z -] (sim/load_sum.hpp), packed as their vectors are.
+    // Four particles' padded loads [x y z -] (state/load_sum.hpp), packed as their vectors are.
     simd::pack_padded(a.force[i].v.data(), force), simd::pack_padded(a.torque[i].v.data(), torque);
     int broken = 0, left = 0;
     for (int q = 0; q < 3; ++q) {
