@@ -10,7 +10,7 @@ namespace {
 // std::vector::resize at least doubles the capacity whenever it grows: the candidate list, the
 // largest thing in memory of a dense run, grows by a few entries at many rebuilds and would keep
 // up to twice the room it needs. Grown by an eighth instead: to exactly n, each of those rebuilds
-// moved the list to new memory, page by page faulted in (6 % of a 10,000-sphere settle). Room
+// moved the list to new memory, page by page faulted in (bench/results/design.md). Room
 // never written is address space only, not resident memory.
 template <class T>
 void resize_with_headroom(std::vector<T>& v, std::size_t n, const T& value) {

@@ -2,7 +2,7 @@
 // How a loop over blocks of storage slots shares its work among threads: each thread takes one
 // contiguous run of blocks (the particles stay in its core's cache from step to step), sized by
 // the blocks' times at the last step (what a block costs depends on its contacts, on fixed
-// particles, on the caches: counts balanced two threads within 30 % at best). Speed only: no
+// particles, on the caches: counts balanced two threads poorly, design.md). Speed only: no
 // result depends on the split.
 #include <algorithm>
 #include <chrono>

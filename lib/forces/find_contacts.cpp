@@ -20,10 +20,8 @@ DEM_AVX2 int find_contacts_avx2(const CandidateArrays a, const PeriodicBox& box,
   using simd::broadcast;
   int m = 0;
   long k = first;
-  // Fetched into the cache ahead: the other particle of the candidates kAhead on. Gathers that
-  // miss the cache stall the loop (the plain loop runs ahead instead); with 10^5 falling spheres
-  // this loop took 50 % more perf samples than the plain one without it, about as many with it
-  // (6,886 against 6,823); the chute's, 5 % fewer than without. (The first particle's slots rise
+  // Fetched into the cache ahead: the other particle of the candidates kAhead on, as gathers that
+  // miss the cache stall the loop (bench/results/design.md). (The first particle's slots rise
   // along the storage: the processor fetches those ahead by itself.)
   constexpr long kAhead = 32;
   const long ahead_end = a.count - kAhead - 4;

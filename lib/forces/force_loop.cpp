@@ -25,16 +25,13 @@ namespace {
 // Each contact and each block of particles is written by one thread only; no force is added
 // atomically (DESIGN.md). Each thread takes a contiguous run of blocks, as in the integration:
 // candidates are stored along the particles' order, so a thread mostly reads particles that stay
-// in its own core's cache. (Chunks dealt in turn balanced the threads better but made the cores
-// trade cache lines every step: 40 % slower on 2 cores.)
+// in its own core's cache (chunks dealt in turn made the cores trade cache lines: design.md).
 // Each loop also returns the largest overlap relative to the smaller radius (a stability check).
 constexpr long kChunk = 256;  // candidates per pass-1/pass-2 chunk
 
-// The four-wide law pays where a chunk holds several groups of four contacts. In a sparse chunk
-// (falling spheres: one to five contacts per 256 candidates) each contact's data miss the cache
-// and a group's gathers wait for all four lanes, some of them padding: 10^5 falling spheres spent
-// 25 % more samples in the four-wide law than in the plain loops (perf); in dense chunks it takes
-// fewer (10^4 settling spheres: 2,364 against 2,732).
+// The four-wide law pays where a chunk holds several groups of four contacts; in a sparse chunk
+// (falling spheres) each group's gathers wait for all four lanes, some of them padding, and the
+// plain loops are faster (bench/results/design.md).
 constexpr int kMinSimdLaw = 16;
 
 // What every chunk reads, set once per force loop.

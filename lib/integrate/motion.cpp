@@ -13,7 +13,7 @@ namespace dem {
 
 namespace {
 
-// One test per coordinate, no branch (Eigen's allFinite on each vector cost 7 % of a settle's time).
+// One test per coordinate, no branch: Eigen's allFinite per vector was costly (bench/results/design.md).
 inline bool finite_state(const MotionArrays& a, long i) {
   const Vec3 s = (a.x[i] + a.v[i]) + a.w[i];
   return (std::abs(s.x()) <= DBL_MAX) & (std::abs(s.y()) <= DBL_MAX) & (std::abs(s.z()) <= DBL_MAX);

@@ -170,9 +170,8 @@ void LinkedCells::find_near_pairs(const Particles& p, const PeriodicBox& box, st
     for (int h = 0; h < 13; ++h) offset[h] = (kHalf[h][2] * dims[1] + kHalf[h][1]) * dims[0] + kHalf[h][0];
     // There, the half shell is five runs of consecutive cells (along x, a row's cells are
     // consecutive indices): (1, 0, 0), then x - 1 to x + 1 in the rows (y + 1, z), (y - 1, z + 1),
-    // (y, z + 1), (y + 1, z + 1); each run's slots are one range of cell_slots. (Cell by cell, with
-    // one or two particles per cell: 1,554 perf samples of this loop on the settle of 10^4, one
-    // thread, 20,000 steps, against 1,216.)
+    // (y, z + 1), (y + 1, z + 1); each run's slots are one range of cell_slots (faster than cell by
+    // cell with one or two particles per cell: bench/results/design.md).
     const long row[5] = {offset[0], offset[1], offset[4], offset[7], offset[10]};
     const long row_cells[5] = {1, 3, 3, 3, 3};
     const int* const cell_first = cell_first_.data();
@@ -227,9 +226,8 @@ void LinkedCells::find_near_pairs(const Particles& p, const PeriodicBox& box, st
   // Grouped by the smaller slot (a counting sort: in any order within a group), then each group put
   // in key order: an order that depends on neither the threads nor the cells. Each part is counted
   // and placed by one thread: part c's pairs of slot s go after those of the parts before c.
-  // (Owners of slot ranges that each read every part, the way before, took longer on two threads
-  // than on one; atomic counters, whose cache lines the cores passed back and forth, 4 % of the
-  // settle of 10^4's time on two threads.)
+  // (Owners of slot ranges that each read every part, and atomic counters, were slower on two
+  // threads: bench/results/design.md.)
   const long n = static_cast<long>(p.size());
   const long part_count = static_cast<long>(parts_.size());
   auto lower = [](const FoundContact& f) { return std::min(f.slot_i, f.slot_j); };

@@ -347,7 +347,7 @@ void Simulation::integrate(bool any_fixed) {
   integrate_times_.fit(blocks, [&](long b) { return std::min(block, n - b * block); });  // particles, until timed
   // Each thread takes its own copies of these (firstprivate), kept in registers: shared, they are
   // read through OpenMP's record of shared variables, which the compiler reloaded after every store
-  // (Eigen's stores are SSE intrinsics, which may alias anything): 10 % of this loop's time.
+  // (Eigen's stores are SSE intrinsics, which may alias anything; bench/results/design.md).
 #pragma omp parallel reduction(max : bad) firstprivate(a, c)
   {
     const long threads = omp_get_num_threads(), t = omp_get_thread_num();
@@ -382,8 +382,7 @@ void Simulation::audit_energy() {
     for (std::size_t k = 0; k < particles.size(); ++k) b.potential_scale += particles.mass[k] * params.gravity.norm() * particles.radius[k];
     return;
   }
-  // Static walls do no work (wall_power would skip every contact, serially: 2 % of a settle's
-  // time on two threads).
+  // Static walls do no work: wall_power would skip every contact, serially.
   const double work = walls_move_ ? wall_power(particles, wall_geometry_, walls_) * dt : 0.0;
   b.wall_work += work;
   b.wall_work_abs += std::abs(work);

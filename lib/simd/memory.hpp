@@ -43,9 +43,9 @@ DEM_AVX2_INLINE Ints4 gather(const int* base, Ints4 index) {
 }
 
 // base[a], base[b], base[c], base[d] as x, y and z of the four: each vector read with one masked
-// load and the four transposed, in place of three gathers (pass 1 took 15 % fewer perf samples on
-// the chute so). The slots by value: read through a pointer here, pass 1's loop kept one more
-// pointer and spilled a register.
+// load and the four transposed, in place of three gathers (faster: bench/results/design.md). The
+// slots by value: read through a pointer here, pass 1's loop kept one more pointer and spilled a
+// register.
 DEM_AVX2_INLINE Triple<Lanes4> load_four(const Vec3* base, int a, int b, int c, int d) {
   const __m256i xyz = _mm256_setr_epi64x(-1, -1, -1, 0);
   const __m256d ra = _mm256_maskload_pd(base[a].data(), xyz), rb = _mm256_maskload_pd(base[b].data(), xyz);

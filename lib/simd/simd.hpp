@@ -7,7 +7,7 @@
 // no fused multiply-add is enabled, so none is contracted). Their operations are the layer's:
 // lanes.hpp (lane types and arithmetic), lanes_avx2.hpp (what needs AVX2 instructions of its
 // own), memory.hpp (loads, stores, gathers), layout.hpp (four vectors' layouts in registers).
-// (AVX-512, eight lanes, was tried for the law: 15 % slower on an Intel Xeon, same bits.)
+// (AVX-512, eight lanes, was tried for the law: slower, same bits; bench/results/design.md.)
 
 namespace dem {
 
