@@ -233,13 +233,18 @@ TEST_F(CheckpointTest, ForeignHdf5) {
   expect_rejected(p, "not a dem checkpoint");
 }
 
-TEST_F(CheckpointTest, WrongSchemaVersion) {
-  hid_t f = H5Fopen(path_.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+// Edits the file's schema_version to v and, when given, deletes the group `drop` (unsealed).
+void set_schema_version(const std::string& path, int v, const char* drop = nullptr) {
+  hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
   hid_t a = H5Aopen(f, "schema_version", H5P_DEFAULT);
-  const int v = 99;
   H5Awrite(a, H5T_NATIVE_INT, &v);
   H5Aclose(a);
+  if (drop) H5Ldelete(f, drop, H5P_DEFAULT);
   H5Fclose(f);
+}
+
+TEST_F(CheckpointTest, WrongSchemaVersion) {
+  set_schema_version(path_, 99);
   expect_rejected(path_, "does not match its seal");  // an edited file is refused as such
   reseal(path_);
   expect_rejected(path_, "schema version 99");
@@ -247,13 +252,7 @@ TEST_F(CheckpointTest, WrongSchemaVersion) {
 
 // A schema 2 file (before [[pair]] overrides were stored) is still read, without overrides.
 TEST_F(CheckpointTest, SchemaTwoIsReadWithoutPairOverrides) {
-  hid_t f = H5Fopen(path_.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
-  hid_t a = H5Aopen(f, "schema_version", H5P_DEFAULT);
-  const int v = 2;
-  H5Awrite(a, H5T_NATIVE_INT, &v);
-  H5Aclose(a);
-  H5Ldelete(f, "/pairs", H5P_DEFAULT);
-  H5Fclose(f);
+  set_schema_version(path_, 2, "/pairs");
   reseal(path_);
   Simulation s;
   CheckpointMeta m;
