@@ -5,8 +5,10 @@
 // is 2 B(2/5, 1/2) / (5/2), Johnson, Contact Mechanics, §11.1), rebound speed = v.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <string>
 
 #include "contact/contact_law.hpp"
 #include "contact/model_table.hpp"
@@ -69,9 +71,11 @@ struct Impact {
 
 // A soft sphere (radius 1 mm) meets a hard one (1.5 mm) head-on at relative speed v, or a hard
 // wall; no gravity, no damping. The step is t_c / steps_per_contact.
-Impact impact(bool against_wall, double steps_per_contact, double v, double& t_c, double& delta_max) {
+Impact impact(bool against_wall, double steps_per_contact, double v, double& t_c, double& delta_max, double restitution = 1) {
   Simulation sim;
-  sim.materials = MaterialTable({kSoft, kHard}, {});
+  Material soft = kSoft, hard = kHard;
+  soft.restitution = hard.restitution = restitution;
+  sim.materials = MaterialTable({soft, hard}, {});
   sim.params.gravity = Vec3::Zero();
   const double a = 1e-3, b = 1.5e-3;
   const double m_a = kSoft.density * 4.0 / 3.0 * std::numbers::pi * a * a * a;
@@ -131,6 +135,60 @@ TEST(Hertz, ElasticImpactsMatchTheClosedForm) {
     const Impact fine = impact(wall, 100, 0.2, t_c, delta_max);
     EXPECT_LT(std::abs(fine.duration / t_c - 1), std::abs(r.duration / t_c - 1) / 3) << what << ": second order";
   }
+}
+
+// Eq. H7 against the impact it stands for, integrated here (RK4, 40,000 steps per contact): in
+// units where the impact speed, m* and the stiffness are 1, the overlap obeys
+// x'' = -x^(3/2) - 2 sqrt(3/2) zeta x^(1/4) x', x(0) = 0, x'(0) = 1, and the speed at which it
+// closes again is the restitution. zeta = sqrt(5/6) gamma(eta) rebounds at eta within 1e-5
+// (measured 2e-6 or less; the bound covers RK4's error where x^(1/4) is not smooth).
+double rebound(double zeta) {
+  const double c = 2 * std::sqrt(1.5) * zeta, h = 1e-4;
+  auto accel = [c](double x, double v) {
+    const double y = std::max(x, 0.0);
+    return -y * std::sqrt(y) - c * std::sqrt(std::sqrt(y)) * v;
+  };
+  double x = 0, v = 1;
+  for (int k = 0; k < 10000000; ++k) {
+    const double k1x = v, k1v = accel(x, v);
+    const double k2x = v + 0.5 * h * k1v, k2v = accel(x + 0.5 * h * k1x, v + 0.5 * h * k1v);
+    const double k3x = v + 0.5 * h * k2v, k3v = accel(x + 0.5 * h * k2x, v + 0.5 * h * k2v);
+    const double k4x = v + h * k3v, k4v = accel(x + h * k3x, v + h * k3v);
+    const double xn = x + h / 6 * (k1x + 2 * k2x + 2 * k3x + k4x), vn = v + h / 6 * (k1v + 2 * k2v + 2 * k3v + k4v);
+    if (k > 0 && xn <= 0) return -(v + (vn - v) * x / (x - xn));
+    x = xn, v = vn;
+  }
+  return 0;
+}
+
+TEST(Hertz, DampingRatioGivesTheAskedRestitution) {
+  for (const double eta : {0.05, 0.1, 0.3, 0.5, 0.7, 0.9}) {
+    Material m = hertz_material("m", 1e7, 0.3, 2500);
+    m.restitution = eta;
+    const PairParams p = MaterialTable({m}, {}).pair(0, 0);
+    const double zeta = p.hertz_damping / (2 * std::sqrt(1.5 * p.hertz_modulus));  // eq. H6
+    EXPECT_NEAR(rebound(zeta), eta, 1e-5 * eta) << "eta " << eta;
+  }
+}
+
+// The hertz damping (eq. H6) with zeta from eq. H7: the realised restitution tends to the asked
+// one as the step shrinks (t_c/800: within 0.52 % at eta 0.05, 0.06 % at 0.3, 1e-5 at 0.9; bound
+// 0.6 %), through the whole step. At t_c/50 the dashpot's half-step
+// velocity leaves a first-order error, large where damping is strong (-7.8 % at eta 0.05, -0.97 %
+// at 0.3, +0.05 % at 0.9; the subject of the second-order dashpot still to come): bound 1.5 % for
+// eta >= 0.3, and the error must fall at least threefold from t_c/50 to t_c/200.
+TEST(Hertz, DampedImpactsReboundWithTheAskedRestitution) {
+  for (const bool wall : {false, true})
+    for (const double eta : {0.05, 0.1, 0.3, 0.5, 0.7, 0.9}) {
+      const std::string what = std::string(wall ? "sphere on a wall" : "sphere on a sphere") + ", eta " + std::to_string(eta);
+      double t_c = 0, delta_max = 0;
+      const double coarse = impact(wall, 50, 0.2, t_c, delta_max, eta).rebound / eta - 1;
+      const double finer = impact(wall, 200, 0.2, t_c, delta_max, eta).rebound / eta - 1;
+      const double fine = impact(wall, 800, 0.2, t_c, delta_max, eta).rebound / eta - 1;
+      EXPECT_LT(std::abs(fine), 6e-3) << what;
+      if (eta >= 0.3) EXPECT_LT(std::abs(coarse), 1.5e-2) << what;
+      if (eta < 0.9) EXPECT_LT(std::abs(finer), std::abs(coarse) / 3) << what << ": converges";
+    }
 }
 
 }  // namespace

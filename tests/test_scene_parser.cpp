@@ -194,8 +194,6 @@ std::vector<BadCase> bad_cases() {
        {"material[0].young_modulus is missing (required)"}},
       {"kn on a hertz material", replace(kValid, "kn = 5.0e4", "law = \"hertz\"\nyoung_modulus = 1e7\npoisson_ratio = 0.3\nkn = 5.0e4"),
        {"material[0].kn = 50000", "a property of law cundall, liu, mendes"}},
-      {"hertz damped", replace(kValid, "kn = 5.0e4", "law = \"hertz\"\nyoung_modulus = 1e7\npoisson_ratio = 0.3\nkt = 5.0e4"),
-       {"material[0].restitution = 0.3", "the hertz law is undamped"}},
       {"poisson ratio of 0.5", replace(kValid, "kn = 5.0e4", "law = \"hertz\"\nyoung_modulus = 1e7\npoisson_ratio = 0.5\nkt = 5.0e4"),
        {"material[0].poisson_ratio = 0.5", "(-1, 0.5)"}},
       {"a hertz pair with a cundall material",

@@ -18,7 +18,7 @@ namespace dem {
 // A contact model composed of sub-models, each in its own file that owns everything about it: the
 // elastic normal law (normal_laws.hpp), the damping (damping.hpp), the tangential law with its
 // failure surface (tangential.hpp). The force loop is compiled for the combination a scene uses.
-template <class Normal, class Damping = ViscousDamping, class Tangential = CoulombSpring>
+template <class Normal, class Damping = typename Normal::Damping, class Tangential = CoulombSpring>
 struct ContactModel {
   using NormalLaw = Normal;
   using DampingModel = Damping;

@@ -60,4 +60,27 @@ struct ViscousDamping {
   }
 };
 
+// The damping of the hertz law (Tsuji et al. 1992's form): a dashpot that grows with the contact,
+// c_n = 2 zeta sqrt(m* k(u)), k(u) = 2 E* sqrt(R* u) the law's slope (docs/contact-laws.md eq. H6).
+// Its restitution depends on zeta alone, not on the speed: zeta = sqrt(5/6) gamma(eta) (eq. H7,
+// gamma of eq. 2.29) gives eta (tests/test_hertz.cpp integrates the impact: within 1e-5).
+// Tangential: as ViscousDamping (the tangential spring is linear).
+struct HertzDamping {
+  static constexpr std::string_view keyword = "hertz_viscous";
+  template <class P, class L>
+  [[gnu::always_inline]] static Dashpots<L> coefficients(const P& p, const LaneKinematics<L>& c) {
+    const L u = lanes::only_where(lanes::less(L(0.0), c.overlap), c.overlap);
+    return {p.hertz_damping * lanes::root(c.m_eff * lanes::root(c.r_eff * u)), p.damping_t * lanes::root(c.m_eff)};
+  }
+  static constexpr auto& keys = ViscousDamping::keys;
+  static void derive(PairParams& p, const PairProperties& pair) {
+    ViscousDamping::derive(p, pair);
+    // eq. H7, with k(u) = 3/2 (4/3 E*) sqrt(R* u).
+    p.hertz_damping = 2 * std::sqrt(5.0 / 6.0) * p.gamma_n * std::sqrt(1.5 * p.hertz_modulus);
+  }
+  static double largest_normal(const PairParams& p, double mass, double stiffness) {
+    return p.hertz_modulus > 0 ? p.hertz_damping / std::sqrt(1.5 * p.hertz_modulus) * std::sqrt(mass * stiffness) : 0.0;
+  }
+};
+
 }  // namespace dem

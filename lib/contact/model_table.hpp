@@ -62,7 +62,7 @@ struct ModelTable {
 
 // Elastic normal laws, in the order of NormalLaw's codes.
 using NormalLaws = ModelTable<CundallNormal, LiuNormal, MendesNormal, HertzNormal>;
-using Dampings = ModelTable<ViscousDamping>;
+using Dampings = ModelTable<ViscousDamping, HertzDamping>;  // each normal law names its own (Damping)
 using TangentialLaws = ModelTable<CoulombSpring>;
 
 constexpr int kNormalLaws = NormalLaws::size;  // codes 0 .. kNormalLaws - 1
@@ -83,14 +83,28 @@ inline NormalLaw law_without_bonds(NormalLaw law) {
   return with_normal_law(law, [](auto m) { return static_cast<NormalLaw>(NormalLaws::code_of<typename decltype(m)::WithoutBonds>()); });
 }
 
+// The damping of each contact's pair, per contact (MixedNormal's).
+struct MixedDamping {
+  static Dashpots<double> coefficients(const PairParams& p, const LaneKinematics<double>& c) {
+    return with_normal_law(p.law, [&](auto law) { return decltype(law)::Damping::coefficients(p, c); });
+  }
+};
+
 // A scene whose material pairs use different laws: the law of each contact's pair, per contact.
 struct MixedNormal {
   static constexpr bool four_wide = false;
+  using Damping = MixedDamping;
   static double elastic(const PairParams& p, double u, double r_eff, bool& bonded) {
     return with_normal_law(p.law, [&](auto law) { return decltype(law)::elastic(p, u, r_eff, bonded); });
   }
 };
 
+// The damping model of a pair: its normal law's. The tangential model: one today, shared by every
+// pair (a second one adds a code to PairParams).
+template <class F>
+decltype(auto) with_damping(const PairParams& p, F&& f) {
+  return with_normal_law(p.law, [&](auto law) { return f(typename decltype(law)::Damping{}); });
+}
 // The scene keys a material with normal law `law` reads: its law's, then its damping's and its
 // tangential law's, each once, in that order (a key's default_key comes before it).
 inline std::vector<PropertyKey> property_keys(NormalLaw law) {
@@ -100,7 +114,7 @@ inline std::vector<PropertyKey> property_keys(NormalLaw law) {
       if (std::none_of(keys.begin(), keys.end(), [&](const PropertyKey& o) { return o.keyword == k.keyword; })) keys.push_back(k);
   };
   with_normal_law(law, [&](auto m) { add(decltype(m)::keys); });
-  Dampings::with(0, [&](auto m) { add(decltype(m)::keys); });
+  with_normal_law(law, [&](auto m) { add(decltype(m)::Damping::keys); });
   TangentialLaws::with(0, [&](auto m) { add(decltype(m)::keys); });
   return keys;
 }
@@ -128,25 +142,10 @@ inline PairParams derive_pair_params(NormalLaw law, const PairProperties& q) {
   p.law = law;
   with_normal_law(law, [&](auto m) { m.derive(p, q); });
   TangentialLaws::with(0, [&](auto m) { m.derive(p, q); });
-  Dampings::with(0, [&](auto m) { m.derive(p, q); });
+  with_damping(p, [&](auto m) { m.derive(p, q); });
   return p;
 }
 
-// Why the models of law `law` cannot take `value` for `keyword` yet (a model may refuse a value
-// it cannot honour: `refuses`), or empty.
-inline std::string_view refused_property(NormalLaw law, std::string_view keyword, double value) {
-  return with_normal_law(law, [&](auto m) -> std::string_view {
-    if constexpr (requires { decltype(m)::refuses(keyword, value); }) return decltype(m)::refuses(keyword, value);
-    return {};
-  });
-}
-
-// The damping and tangential models of a pair (one of each today, so every pair shares them; a
-// second one adds a code to PairParams).
-template <class F>
-decltype(auto) with_damping(const PairParams& /*p*/, F&& f) {
-  return Dampings::with(0, f);
-}
 template <class F>
 decltype(auto) with_tangential_law(const PairParams& /*p*/, F&& f) {
   return TangentialLaws::with(0, f);

@@ -6,7 +6,7 @@
 // repulsive. `bonded` is the contact's bond flag Φ; a law clears it when the bond fails in this
 // step (irreversible, SPEC §6 Decision).
 //
-// `WithoutBonds` is the law it acts as exactly while no contact of the scene is bonded (the force
+// `Damping` is its damping sub-model (contact/damping.hpp). `WithoutBonds` is the law it acts as exactly while no contact of the scene is bonded (the force
 // loop then runs that one: liu and mendes run the four-wide cundall code).
 //
 // Each law lists the scene keys it reads (`keys`, contact/properties.hpp) and derives its
@@ -22,6 +22,7 @@
 #include <limits>
 #include <string_view>
 
+#include "contact/damping.hpp"
 #include "contact/pair_params.hpp"
 #include "contact/properties.hpp"
 #include "simd/lanes.hpp"
@@ -44,6 +45,7 @@ inline double linear_compression_energy(const PairParams& p, double u) { return 
 
 // Cundall & Strack: linear in compression, no tension.
 struct CundallNormal {
+  using Damping = ViscousDamping;
   static constexpr std::string_view keyword = "cundall";
   static constexpr bool four_wide = true;
   using WithoutBonds = CundallNormal;  // the law it acts as while no contact is bonded
@@ -64,6 +66,7 @@ struct CundallNormal {
 // Liu (eq. 2.21): linear in compression and, while bonded, in tension up to the strength F; the
 // bond breaks abruptly when the tension would exceed F.
 struct LiuNormal {
+  using Damping = ViscousDamping;
   static constexpr std::string_view keyword = "liu";
   static constexpr bool four_wide = false;
   using WithoutBonds = CundallNormal;  // its tension needs a bond
@@ -94,6 +97,7 @@ struct LiuNormal {
 // T(s) = kn [D (1 - exp(-A s)) - s], s = -u, rising to F at s* = D ln(L) / L and softening to zero
 // at s0, where the bond breaks.
 struct MendesNormal {
+  using Damping = ViscousDamping;
   static constexpr std::string_view keyword = "mendes";
   static constexpr bool four_wide = false;
   using WithoutBonds = CundallNormal;  // its tension needs a bond
@@ -121,9 +125,9 @@ struct MendesNormal {
 // Hertz (elastic spheres, the normal part of Hertz-Mindlin; docs/contact-laws.md eq. H1-H4):
 // f = 4/3 E* sqrt(R*) u^(3/2) in compression, none in tension, with the pair's effective modulus
 // 1/E* = (1 - nu_a^2)/E_a + (1 - nu_b^2)/E_b (eq. H2) and the contact's effective radius
-// 1/R* = 1/a_i + 1/a_j (a wall: R* = a_i), eq. H3. Undamped: its damping (Tsuji's, whose
-// coefficient grows with the contact radius) is still to come, so it refuses restitution < 1.
+// 1/R* = 1/a_i + 1/a_j (a wall: R* = a_i), eq. H3. Damped by HertzDamping (eq. H6-H7).
 struct HertzNormal {
+  using Damping = HertzDamping;  // its dashpot grows with the contact (eq. H6)
   static constexpr std::string_view keyword = "hertz";
   static constexpr bool four_wide = false;
   using WithoutBonds = HertzNormal;
@@ -147,15 +151,8 @@ struct HertzNormal {
   static void derive(PairParams& p, const PairProperties& pair) {
     const auto compliance = [](const ContactProperties& m) { return (1 - m.poisson_ratio * m.poisson_ratio) / m.young_modulus; };
     p.hertz_modulus = 4.0 / 3.0 / (compliance(pair.a) + compliance(pair.b));  // eq. H2
-    p.kn = 0;  // no linear spring: the viscous dashpot, which reads it, is off (restitution 1)
+    p.kn = 0;  // no linear spring
     p.break_separation = 0;
-  }
-  // A value this law cannot honour yet, with the reason; empty when fine.
-  static std::string_view refuses(std::string_view keyword, double value) {
-    if (keyword == "restitution" && value < 1)
-      return "the hertz law is undamped until its damping (Tsuji) is written: give restitution = 1 (tangential_restitution may be "
-             "below 1)";
-    return {};
   }
 };
 

@@ -27,6 +27,7 @@ struct PairParams {
   double mendes_D = 0, mendes_A = 0;
   double break_separation = 0;  // separation s at which a bond breaks: F/kn (liu), s0 (mendes), 0
   double hertz_modulus = 0;     // 4/3 E* [Pa] (hertz, eq. H1-H2)
+  double hertz_damping = 0;     // 2 zeta sqrt(3/2 hertz_modulus) (hertz, eq. H6)
 };
 
 // The sizes a stiffness bound (eq. 2.48) may depend on: a law whose slope grows with the overlap

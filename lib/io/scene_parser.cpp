@@ -284,14 +284,11 @@ NormalLaw read_law(TableReader& r, const std::string* def) {
   return *normal_law_named(r.choice("law", normal_law_names(), def));  // the table's keywords
 }
 
-// One contact property by its key (contact/properties.hpp), stored in `into`; returns it. A value
-// the models of `law` cannot honour is an error with their reason.
-double read_property(TableReader& r, NormalLaw law, const PropertyKey& k, ContactProperties& into) {
+// One contact property by its key (contact/properties.hpp), stored in `into`; returns it.
+double read_property(TableReader& r, const PropertyKey& k, ContactProperties& into) {
   const std::string key(k.keyword);
   if (k.flag) return into.*k.flag = r.boolean_or(key, false);
-  const double v = into.*k.number = r.number(key, k.lo, k.hi, std::string(k.unit).c_str(), k.lo_open, k.hi_open);
-  if (const std::string_view why = refused_property(law, k.keyword, v); !why.empty()) r.fail(key, std::string(why));
-  return v;
+  return into.*k.number = r.number(key, k.lo, k.hi, std::string(k.unit).c_str(), k.lo_open, k.hi_open);
 }
 
 // A key that only other laws' models read is an error that says whose it is.
@@ -338,7 +335,7 @@ void read_pairs(TableReader& top, Scene& sc) {
       if (!r.has(std::string(k.keyword))) continue;
       if (!k.mixing && !k.flag)
         r.fail(std::string(k.keyword), "a property of each material, which the law combines itself: give it in the [[material]]");
-      o.set(k.keyword, read_property(r, law, k, o.values));
+      o.set(k.keyword, read_property(r, k, o.values));
     }
     r.finish();
     sc.pairs.push_back(o);
@@ -376,7 +373,7 @@ void read_materials(TableReader& top, Scene& sc) {
     for (const PropertyKey& k : keys) {
       const std::string key(k.keyword);
       if (r.has(key)) {
-        read_property(r, m.law, k, m);
+        read_property(r, k, m);
         continue;
       }
       // Omitted: its default, or an earlier key's value, or required.
@@ -385,9 +382,6 @@ void read_materials(TableReader& top, Scene& sc) {
       else if (from != keys.end()) m.*k.number = m.*from->number;
       else if (k.required || !k.default_key.empty()) r.required(key);
       else m.*k.number = k.default_value;
-      if (!k.flag && !r.has(key))
-        if (const std::string_view why = refused_property(m.law, k.keyword, m.*k.number); !why.empty())
-          r.fail("law", std::string(why) + " (" + key + " defaults to " + std::to_string(m.*k.number) + ")");
     }
     r.finish();
     sc.materials.push_back(m);
