@@ -1,6 +1,6 @@
 #pragma once
-// The one table of contact sub-models: for each kind (elastic normal law, damping, tangential
-// law), the list of its models. A model's code is its place in the list (checkpoints store the
+// The one table of contact sub-models: the elastic normal laws and the tangential laws, each a
+// list of models; the damping is the one each normal law names (Normal::Damping). A model's code is its place in the list (checkpoints store the
 // normal law's); its keyword is its own. The parser, the materials (constants, eq. 2.48), the
 // energy check, the servo and the force loop ask these tables, never a switch of their own.
 // A new model: its type in its kind's file, one entry in its list below (a normal law also one
@@ -62,7 +62,6 @@ struct ModelTable {
 
 // Elastic normal laws, in the order of NormalLaw's codes.
 using NormalLaws = ModelTable<CundallNormal, LiuNormal, MendesNormal, HertzNormal>;
-using Dampings = ModelTable<ViscousDamping, HertzDamping>;  // each normal law names its own (Damping)
 using TangentialLaws = ModelTable<CoulombSpring>;
 
 constexpr int kNormalLaws = NormalLaws::size;  // codes 0 .. kNormalLaws - 1
@@ -99,12 +98,12 @@ struct MixedNormal {
   }
 };
 
-// The damping model of a pair: its normal law's. The tangential model: one today, shared by every
-// pair (a second one adds a code to PairParams).
+// The damping model of a pair: its normal law's.
 template <class F>
 decltype(auto) with_damping(const PairParams& p, F&& f) {
   return with_normal_law(p.law, [&](auto law) { return f(typename decltype(law)::Damping{}); });
 }
+
 // The scene keys a material with normal law `law` reads: its law's, then its damping's and its
 // tangential law's, each once, in that order (a key's default_key comes before it).
 inline std::vector<PropertyKey> property_keys(NormalLaw law) {
@@ -113,8 +112,7 @@ inline std::vector<PropertyKey> property_keys(NormalLaw law) {
     for (const PropertyKey& k : list)
       if (std::none_of(keys.begin(), keys.end(), [&](const PropertyKey& o) { return o.keyword == k.keyword; })) keys.push_back(k);
   };
-  with_normal_law(law, [&](auto m) { add(decltype(m)::keys); });
-  with_normal_law(law, [&](auto m) { add(decltype(m)::Damping::keys); });
+  with_normal_law(law, [&](auto m) { add(decltype(m)::keys), add(decltype(m)::Damping::keys); });
   TangentialLaws::with(0, [&](auto m) { add(decltype(m)::keys); });
   return keys;
 }
@@ -146,6 +144,8 @@ inline PairParams derive_pair_params(NormalLaw law, const PairProperties& q) {
   return p;
 }
 
+// The tangential model of a pair: one today, shared by every pair (a second one adds a code to
+// PairParams).
 template <class F>
 decltype(auto) with_tangential_law(const PairParams& /*p*/, F&& f) {
   return TangentialLaws::with(0, f);
