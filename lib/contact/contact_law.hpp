@@ -42,8 +42,10 @@ struct ContactModel {
     fn = zero_where(both(but_not(p.no_viscous_attraction, bonded), less(fn, zero)), fn);
     // Tangential relative velocity at the contact point, eq. 2.12.
     const Triple<L> vt = (c.v_rel - vn * n) - cross(c.w_arm, n);
-    const Triple<L> ft = Tangential::force(p, vt, fn, bonded, dashpot.tangential, dt, spring);
-    return {(-fn) * n + ft, ft};
+    LaneForce<L> f;
+    Tangential::force(p, vt, fn, bonded, dashpot.tangential, dt, spring, f.tangential);
+    f.on_i = (-fn) * n + f.tangential;
+    return f;
   }
 
   // One contact with Eigen's vectors, for the plain loops, the wall contacts and the tests.

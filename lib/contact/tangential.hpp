@@ -49,12 +49,13 @@ struct CoulombSpring {
     return select(both(less(zero, s2), less(zero, t2)), s * root(s2 / t2), s);
   }
 
-  // The tangential force on i for tangential velocity vt (eq. 2.12) and normal force fn (> 0 in
-  // compression), with dashpot coefficient c_t; `spring` (already in the tangent plane) is
-  // updated in place.
+  // The tangential force `ft` on i for tangential velocity vt (eq. 2.12) and normal force fn (> 0
+  // in compression), with dashpot coefficient c_t; `spring` (already in the tangent plane) is
+  // updated in place. (An out-parameter: returned by value, the force was copied through the
+  // stack in the four-wide law.)
   template <class P, class L, class M>
-  [[gnu::always_inline]] static lanes::Triple<L> force(const P& p, const lanes::Triple<L>& vt, const L& fn, const M& bonded,
-                                                       const L& dashpot, double dt, lanes::Triple<L>& spring) {
+  [[gnu::always_inline]] static void force(const P& p, const lanes::Triple<L>& vt, const L& fn, const M& bonded, const L& dashpot,
+                                           double dt, lanes::Triple<L>& spring, lanes::Triple<L>& ft) {
     using namespace lanes;
     const L zero(0.0);
     // Trial force (eq. 2.13-2.15): i is dragged along the motion of j relative to i.
@@ -65,14 +66,13 @@ struct CoulombSpring {
     const L trial2 = dot(trial, trial);
     const M stick = less_or_equal(trial2, tau * tau);
     spring = trial;
-    Triple<L> ft = trial + dashpot * vt;  // sticking, damped
+    ft = trial + dashpot * vt;  // sticking, damped
     if (!all(stick)) {  // sliding: radial return onto the failure surface (eq. 2.26); the spring keeps tau
       const L trial_norm = root(trial2);
       const Triple<L> slid = only_where(less(zero, trial_norm), trial * (tau / trial_norm));
       spring = select(stick, spring, slid);
       ft = select(stick, ft, slid);
     }
-    return ft;
   }
 
   // The energy held in the spring: |s|^2 / (2 kt) [J].
