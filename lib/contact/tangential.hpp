@@ -6,7 +6,7 @@
 //
 // A tangential sub-model has: `keyword`; `keys` (its scene keys, contact/properties.hpp);
 // `derive(p, properties)`; `in_tangent_plane(spring, n)` (its history turned into
-// the current tangent plane); `force(p, vt, fn, bonded, dashpot, dt, spring)` (over a lane type);
+// the current tangent plane); `force(p, vt, fn, bonded, dashpot, dt, spring, ft)` (over a lane type);
 // `stored_energy(p, spring)`; `stiffness(p)` (for eq. 2.48).
 #include <cmath>
 #include <limits>
