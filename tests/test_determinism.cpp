@@ -349,18 +349,36 @@ TEST(Determinism, SkinChangesNoBit) {
 // another order of the sums seldom shows here: StorageOrderAndThreadsChangeNoBit is the test that
 // tells.)
 // The kinetic energy a settle check stops on is summed in id order: a shuffled storage gives its
-// bits (storage order would not: the sum of the 1000 terms backwards differs).
+// bits (storage order would not: the sum of the terms backwards differs). The pressed lattice's
+// 1000 spheres fit one block of the parallel sum (1024 particles); 12,000 random ones, as the
+// settle of a generated sample, take twelve, on one and two threads.
 TEST(Determinism, KineticEnergyIgnoresStorageOrder) {
-  Simulation a = make_pressed_lattice(false);
-  for (std::size_t k = 0; k < a.particles.size(); ++k) a.particles.w[k] = Vec3(0.01 * k, 0, 0.3);
-  Simulation b = a;
-  shuffle_storage(b, 3);
-  ASSERT_NE(a.particles.id, b.particles.id);
-  EXPECT_EQ(std::bit_cast<std::uint64_t>(a.kinetic_energy()), std::bit_cast<std::uint64_t>(b.kinetic_energy()));
-  double forward = 0, backward = 0, r;
-  for (std::size_t k = 0; k < a.particles.size(); ++k) forward += kinetic_energy_of(a.particles, k, r);
-  for (std::size_t k = b.particles.size(); k-- > 0;) backward += kinetic_energy_of(b.particles, k, r);
-  ASSERT_NE(forward, backward) << "another order must change bits for the test to mean anything";
+  const int threads_before = omp_get_max_threads();
+  Simulation big;
+  big.materials = glass();
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (long k = 0; k < 12000; ++k) {
+    big.particles.add(k, Vec3(u(rng), u(rng), u(rng)), 1e-3 * (1.5 + u(rng)), 2500, 0);
+    big.particles.v[k] = Vec3(u(rng), u(rng), u(rng)), big.particles.w[k] = Vec3(u(rng), u(rng), 30 * u(rng));
+  }
+  Simulation small = make_pressed_lattice(false);
+  for (std::size_t k = 0; k < small.particles.size(); ++k) small.particles.w[k] = Vec3(0.01 * k, 0, 0.3);
+  for (Simulation* a : {&small, &big}) {
+    Simulation b = *a;
+    shuffle_storage(b, 3);
+    ASSERT_NE(a->particles.id, b.particles.id);
+    for (const int threads : {1, 2}) {
+      omp_set_num_threads(threads);
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(a->kinetic_energy()), std::bit_cast<std::uint64_t>(b.kinetic_energy()))
+          << a->particles.size() << " particles, " << threads << " threads";
+    }
+    double forward = 0, backward = 0, r;
+    for (std::size_t k = 0; k < a->particles.size(); ++k) forward += kinetic_energy_of(a->particles, k, r);
+    for (std::size_t k = b.particles.size(); k-- > 0;) backward += kinetic_energy_of(b.particles, k, r);
+    ASSERT_NE(forward, backward) << "another order must change bits for the test to mean anything";
+  }
+  omp_set_num_threads(threads_before);
 }
 
 TEST(Determinism, StorageOrderChangesNoBit) {

@@ -20,9 +20,7 @@ namespace dem {
 // failure surface (tangential.hpp). The force loop is compiled for the combination a scene uses.
 template <class Normal, class Damping = typename Normal::Damping, class Tangential = CoulombSpring>
 struct ContactModel {
-  using NormalLaw = Normal;
-  using DampingModel = Damping;
-  using TangentialModel = Tangential;
+  using TangentialModel = Tangential;  // the four-wide loop turns springs with it
 
   // The law for a spring already in the tangent plane (Tangential::in_tangent_plane): `spring` is
   // updated in place, `bonded` (Phi) cleared where the bond breaks.

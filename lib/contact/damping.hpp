@@ -79,7 +79,7 @@ struct HertzDamping {
     p.hertz_damping = 2 * std::sqrt(5.0 / 6.0) * p.gamma_n * std::sqrt(1.5 * p.hertz_modulus);
   }
   static double largest_normal(const PairParams& p, double mass, double stiffness) {
-    return p.hertz_modulus > 0 ? p.hertz_damping / std::sqrt(1.5 * p.hertz_modulus) * std::sqrt(mass * stiffness) : 0.0;
+    return 2 * std::sqrt(5.0 / 6.0) * p.gamma_n * std::sqrt(mass * stiffness);  // eq. H6-H7 at the bound
   }
 };
 
