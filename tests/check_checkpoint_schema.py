@@ -10,7 +10,7 @@ import numpy as np
 def main(path, expect_writer):
     with h5py.File(path, "r") as f:
         assert f.attrs["format"] == b"dem-checkpoint", f.attrs["format"]
-        assert int(f.attrs["schema_version"]) == 3
+        assert int(f.attrs["schema_version"]) == 4
         assert f.attrs["writer"].decode() == expect_writer, f.attrs["writer"]
         assert len(f.attrs["writer_version"]) > 0
 
@@ -40,6 +40,7 @@ def main(path, expect_writer):
             "materials/tangential_restitution": ("f", (m,), "1"), "materials/mixing": ("i", (4,), None),
             "materials/tensile_strength": ("f", (m,), "N"), "materials/cohesion": ("f", (m,), "N"),
             "materials/epsilon": ("f", (m,), "1"), "materials/law": ("i", (m,), None),
+            "materials/tangential": ("i", (m,), None), "pairs/tangential": ("i", (npairs,), None),
             "materials/no_viscous_attraction": ("i", (m,), None),
             "materials/young_modulus": ("f", (m,), "Pa"), "materials/poisson_ratio": ("f", (m,), "1"),
             "pairs/young_modulus": ("f", (npairs,), "Pa"), "pairs/poisson_ratio": ("f", (npairs,), "1"),
@@ -93,7 +94,7 @@ def main(path, expect_writer):
             assert np.all(pairs[:, 0] < pairs[:, 1]), "pair keys ordered id_i < id_j"
             assert np.all(np.isin(pairs, ids)), "pair keys are particle ids"
         assert f["state/dt"][0] > 0 and f["state/step"][0] > 0
-    print(f"{path}: schema v3 ok ({n} particles, {m} materials, {w} walls)")
+    print(f"{path}: schema v4 ok ({n} particles, {m} materials, {w} walls)")
 
 
 if __name__ == "__main__":

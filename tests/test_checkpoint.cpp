@@ -262,6 +262,42 @@ TEST_F(CheckpointTest, SchemaTwoIsReadWithoutPairOverrides) {
   EXPECT_EQ(s.particles.x, sim_.particles.x);
 }
 
+// A schema 3 file (before tangential laws were stored) is read with every tangential law coulomb;
+// a schema 4 file without them is damaged.
+TEST_F(CheckpointTest, SchemaThreeIsReadWithCoulombSprings) {
+  set_schema_version(path_, 4, "/materials/tangential");
+  reseal(path_);
+  expect_rejected(path_, "/materials/tangential is missing");
+  set_schema_version(path_, 3, "/pairs/tangential");
+  reseal(path_);
+  Simulation s;
+  CheckpointMeta m;
+  read_checkpoint(path_, s, m);
+  EXPECT_EQ(s.materials.pair(0, 1).tangential, TangentialLaw::Coulomb);
+  EXPECT_EQ(s.materials.pair(0, 1).mu, std::tan(33 * (M_PI / 180))) << "the pair's own angle";
+}
+
+// Tangential laws, a material's and a pair's, come back with the constants they derive.
+TEST_F(CheckpointTest, TangentialLawsRoundTrip) {
+  Material glass, steel;
+  glass.name = "glass", glass.young_modulus = 6e10, glass.poisson_ratio = 0.23;
+  steel.name = "steel", steel.young_modulus = 2e11, steel.poisson_ratio = 0.3, steel.tangential = TangentialLaw::Mindlin;
+  PairOverride pair;
+  pair.b = 1, pair.tangential = TangentialLaw::Mindlin;
+  sim_.materials = MaterialTable({glass, steel}, {}, {pair});
+  write_checkpoint(path_, sim_, meta_);
+  Simulation s;
+  CheckpointMeta m;
+  read_checkpoint(path_, s, m);
+  EXPECT_EQ(s.materials.materials()[0].tangential, TangentialLaw::Coulomb);
+  EXPECT_EQ(s.materials.materials()[1].tangential, TangentialLaw::Mindlin);
+  ASSERT_EQ(s.materials.overrides().size(), 1u);
+  EXPECT_EQ(s.materials.overrides()[0].tangential, TangentialLaw::Mindlin);
+  EXPECT_EQ(s.materials.pair(0, 1).tangential, TangentialLaw::Mindlin);
+  EXPECT_EQ(s.materials.pair(0, 1).mindlin_modulus, sim_.materials.pair(0, 1).mindlin_modulus);
+  EXPECT_GT(s.materials.pair(0, 1).mindlin_modulus, 0);
+}
+
 TEST_F(CheckpointTest, MissingDataset) {
   hid_t f = H5Fopen(path_.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
   H5Ldelete(f, "/particles/velocity", H5P_DEFAULT);

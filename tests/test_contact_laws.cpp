@@ -419,7 +419,7 @@ TEST(LiuBond, UnbondedContactCarriesNoTension) {
   sim.particles.add(3, Vec3(2 * kRadius - 1e-7, 1, 0), kRadius, kDensity, 0);
   place_on_axis(sim, 1.0, 0);  // pair (0, 1) far apart while bonding: only (2, 3) gets a bond
   ASSERT_EQ(sim.bond_present_contacts(false), 1u);
-  ASSERT_EQ(choose_force_variant(sim.materials, sim.has_bonds()), NormalLaw::Liu);
+  ASSERT_EQ(choose_force_variant(sim.materials, sim.has_bonds()), (ModelChoice{NormalLaw::Liu, TangentialLaw::Coulomb}));
   const double u0 = 0.1 * kStrength / kKn, ds = kPullRate * sim.dt;
   double max_tension = -1e300;
   int steps_in_contact = 0;

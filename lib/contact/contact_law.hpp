@@ -16,10 +16,12 @@
 namespace dem {
 
 // A contact model composed of sub-models, each in its own file that owns everything about it: the
-// elastic normal law (normal_laws.hpp), the damping (damping.hpp), the tangential law with its
-// failure surface (tangential.hpp). The force loop is compiled for the combination a scene uses.
-template <class Normal, class Damping = typename Normal::Damping, class Tangential = CoulombSpring>
+// elastic normal law (normal_laws.hpp), its damping (damping.hpp), the tangential law with its
+// dashpot and failure surface (tangential.hpp). The force loop is compiled for the combination a
+// scene uses.
+template <class Normal, class Tangential = CoulombSpring, class Damping = typename Normal::Damping>
 struct ContactModel {
+  using NormalModel = Normal;
   using TangentialModel = Tangential;  // the four-wide loop turns springs with it
 
   // The law for a spring already in the tangent plane (Tangential::in_tangent_plane): `spring` is
@@ -32,16 +34,16 @@ struct ContactModel {
     const Triple<L>& n = c.n;
     const L vn = dot(c.v_rel, n);  // > 0 when separating
     const L f_el = Normal::elastic(p, c.overlap, c.r_eff, bonded);  // clears bonded where the bond breaks
-    const Dashpots<L> dashpot = Damping::coefficients(p, c);
     // f_n = f_el + c_n du_n/dt with du_n/dt = -vn, eq. 2.27-2.28; not clipped (SPEC §6 Decision)
     // unless the pair asks for no_viscous_attraction (unbonded contacts only).
-    L fn = f_el - dashpot.normal * vn;
+    const L c_t = Tangential::dashpot(p, c);  // beside the normal one: both read m*
+    L fn = f_el - Damping::coefficient(p, c) * vn;
     fn = zero_where(but_not(less_or_equal(c.overlap, zero), bonded), fn);  // a pair apart whose bond just broke: no force
     fn = zero_where(both(but_not(p.no_viscous_attraction, bonded), less(fn, zero)), fn);
     // Tangential relative velocity at the contact point, eq. 2.12.
     const Triple<L> vt = (c.v_rel - vn * n) - cross(c.w_arm, n);
     LaneForce<L> f;
-    Tangential::force(p, vt, fn, bonded, dashpot.tangential, dt, spring, f.tangential);
+    Tangential::force(p, c, vt, fn, bonded, c_t, dt, spring, f.tangential);
     f.on_i = (-fn) * n + f.tangential;
     return f;
   }

@@ -1,13 +1,14 @@
 #pragma once
-// Viscous damping from restitution (SPEC §6, eq. 2.27-2.29), a sub-model of the contact law
-// (contact/contact_law.hpp): the dashpot coefficients of one contact, c = 2 gamma sqrt(m k). It
-// owns its constants (derive), and what a servo needs to bound a wall's response (largest_normal).
+// Viscous normal damping from restitution (SPEC §6, eq. 2.27-2.29), a sub-model of the contact law
+// (contact/contact_law.hpp): the normal dashpot coefficient of one contact, c = 2 gamma sqrt(m k).
+// It owns its constants (derive), and what a servo needs to bound a wall's response
+// (largest_normal). The tangential dashpot is the tangential law's (tangential.hpp).
 //
 // A damping sub-model has: `keyword`; `keys` (its scene keys, contact/properties.hpp);
-// `coefficients(p, c)` (its normal and tangential dashpots for contact kinematics c, over a lane
-// type); `derive(p, properties)` (after the normal and tangential laws': it reads their
-// stiffnesses); `largest_normal(p, mass, stiffness)` (the largest normal coefficient against a
-// particle of that mass, for a servo's response).
+// `coefficient(p, c)` (its normal dashpot for contact kinematics c, over a lane type);
+// `derive(p, properties)` (after the normal law's: it reads its stiffness);
+// `largest_normal(p, mass, stiffness)` (the largest normal coefficient against a particle of that
+// mass, for a servo's response).
 #include <cmath>
 #include <numbers>
 #include <string_view>
@@ -26,34 +27,22 @@ inline double damping_ratio(double eta) {
   return -l / std::sqrt(std::numbers::pi * std::numbers::pi + l * l);
 }
 
-template <class L>
-struct Dashpots {
-  L normal, tangential;  // [N s/m]
-};
-
 struct ViscousDamping {
   static constexpr std::string_view keyword = "viscous";
-  // c_n = 2 gamma_n sqrt(m* kn) (eq. 2.28); c_t with the effective mass 2/7 m* of the contact
-  // point (spheres that also spin: 1/m_t = 7/2 (1/m_i + 1/m_j)): eq. 2.28 with m* would over-damp
-  // it by sqrt(7/2) and make near-critical eta_t unstable in the explicit scheme.
+  // c_n = 2 gamma_n sqrt(m* kn) (eq. 2.28) [N s/m].
   template <class P, class L>
-  [[gnu::always_inline]] static Dashpots<L> coefficients(const P& p, const LaneKinematics<L>& c) {
-    const L sqrt_m = lanes::root(c.m_eff);
-    return {p.damping_n * sqrt_m, p.damping_t * sqrt_m};
+  [[gnu::always_inline]] static L coefficient(const P& p, const LaneKinematics<L>& c) {
+    return p.damping_n * lanes::root(c.m_eff);
   }
   static constexpr PropertyKey keys[] = {
       {.keyword = "restitution", .number = &ContactProperties::restitution, .lo = 0, .hi = 1, .lo_open = true,
        .unit = "(eta_n, eq. 2.29)", .si_unit = "1", .mixing = &MixingRules::restitution, .default_value = 1},
-      {.keyword = "tangential_restitution", .number = &ContactProperties::restitution_t, .lo = 0, .hi = 1, .lo_open = true,
-       .unit = "(eta_t, eq. 2.29)", .si_unit = "1", .mixing = &MixingRules::restitution, .default_key = "restitution"},
       {.keyword = "no_viscous_attraction", .flag = &ContactProperties::no_viscous_attraction}};
   static void derive(PairParams& p, const PairProperties& pair) {
     const ContactProperties& q = pair.mixed;
     p.no_viscous_attraction = q.no_viscous_attraction;
     p.gamma_n = damping_ratio(q.restitution);
-    p.gamma_t = damping_ratio(q.restitution_t);
     p.damping_n = 2.0 * p.gamma_n * std::sqrt(p.kn);
-    p.damping_t = 2.0 * p.gamma_t * std::sqrt(2.0 / 7.0 * p.kt);
   }
   static double largest_normal(const PairParams& p, double mass, double stiffness) {
     return 2 * p.gamma_n * std::sqrt(mass * stiffness);
@@ -64,13 +53,12 @@ struct ViscousDamping {
 // c_n = 2 zeta sqrt(m* k(u)), k(u) = 2 E* sqrt(R* u) the law's slope (docs/contact-laws.md eq. H6).
 // Its restitution depends on zeta alone, not on the speed: zeta = sqrt(5/6) gamma(eta) (eq. H7,
 // gamma of eq. 2.29) gives eta (tests/test_hertz.cpp integrates the impact: within 1e-5).
-// Tangential: as ViscousDamping (the tangential spring is linear).
 struct HertzDamping {
   static constexpr std::string_view keyword = "hertz_viscous";
   template <class P, class L>
-  [[gnu::always_inline]] static Dashpots<L> coefficients(const P& p, const LaneKinematics<L>& c) {
+  [[gnu::always_inline]] static L coefficient(const P& p, const LaneKinematics<L>& c) {
     const L u = lanes::only_where(lanes::less(L(0.0), c.overlap), c.overlap);
-    return {p.hertz_damping * lanes::root(c.m_eff * lanes::root(c.r_eff * u)), p.damping_t * lanes::root(c.m_eff)};
+    return p.hertz_damping * lanes::root(c.m_eff * lanes::root(c.r_eff * u));
   }
   static constexpr auto& keys = ViscousDamping::keys;
   static void derive(PairParams& p, const PairProperties& pair) {

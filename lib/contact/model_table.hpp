@@ -1,11 +1,11 @@
 #pragma once
 // The one table of contact sub-models: the elastic normal laws and the tangential laws, each a
-// list of models; the damping is the one each normal law names (Normal::Damping). A model's code is its place in the list (checkpoints store the
-// normal law's); its keyword is its own. The parser, the materials (constants, eq. 2.48), the
+// list of models; the damping is the one each normal law names (Normal::Damping). A model's code
+// is its place in its list (checkpoints store it); its keyword is its own. The parser, the materials (constants, eq. 2.48), the
 // energy check, the servo and the force loop ask these tables, never a switch of their own.
 // A new model: its type in its kind's file, one entry in its list below (a normal law also one
-// value of NormalLaw, contact/pair_params.hpp, in the same place), its tests, its keys in
-// docs/scene.md.
+// value of NormalLaw or TangentialLaw, contact/pair_params.hpp, in the same place), its tests,
+// its keys in docs/scene.md.
 #include <algorithm>
 #include <optional>
 #include <string>
@@ -62,9 +62,11 @@ struct ModelTable {
 
 // Elastic normal laws, in the order of NormalLaw's codes.
 using NormalLaws = ModelTable<CundallNormal, LiuNormal, MendesNormal, HertzNormal>;
-using TangentialLaws = ModelTable<CoulombSpring>;
+// Tangential laws, in the order of TangentialLaw's codes.
+using TangentialLaws = ModelTable<CoulombSpring, MindlinSpring>;
 
 constexpr int kNormalLaws = NormalLaws::size;  // codes 0 .. kNormalLaws - 1
+constexpr int kTangentialLaws = TangentialLaws::size;
 
 // f(Law{}) for the law of code `law`: f is called with an object of the law's type.
 template <class F>
@@ -82,10 +84,26 @@ inline NormalLaw law_without_bonds(NormalLaw law) {
   return with_normal_law(law, [](auto m) { return static_cast<NormalLaw>(NormalLaws::code_of<typename decltype(m)::WithoutBonds>()); });
 }
 
+template <class F>
+decltype(auto) with_tangential_law(TangentialLaw law, F&& f) {
+  return TangentialLaws::with(static_cast<int>(law), f);
+}
+// The tangential model of a pair.
+template <class F>
+decltype(auto) with_tangential_law(const PairParams& p, F&& f) {
+  return with_tangential_law(p.tangential, f);
+}
+inline std::string_view tangential_law_name(TangentialLaw law) { return TangentialLaws::name(static_cast<int>(law)); }
+inline std::optional<TangentialLaw> tangential_law_named(std::string_view keyword) {
+  const std::optional<int> c = TangentialLaws::named(keyword);
+  return c ? std::optional<TangentialLaw>(static_cast<TangentialLaw>(*c)) : std::nullopt;
+}
+inline std::vector<std::string> tangential_law_names() { return TangentialLaws::names(); }
+
 // The damping of each contact's pair, per contact (MixedNormal's).
 struct MixedDamping {
-  static Dashpots<double> coefficients(const PairParams& p, const LaneKinematics<double>& c) {
-    return with_normal_law(p.law, [&](auto law) { return decltype(law)::Damping::coefficients(p, c); });
+  static double coefficient(const PairParams& p, const LaneKinematics<double>& c) {
+    return with_normal_law(p.law, [&](auto law) { return decltype(law)::Damping::coefficient(p, c); });
   }
 };
 
@@ -98,57 +116,82 @@ struct MixedNormal {
   }
 };
 
+// A scene whose material pairs use different tangential laws: the law of each contact's pair.
+struct MixedTangential : TangentialSpring {
+  static double dashpot(const PairParams& p, const LaneKinematics<double>& c) {
+    return with_tangential_law(p, [&](auto law) { return decltype(law)::dashpot(p, c); });
+  }
+  static void force(const PairParams& p, const LaneKinematics<double>& c, const lanes::Triple<double>& vt, double fn, bool bonded,
+                    double dashpot, double dt, lanes::Triple<double>& spring, lanes::Triple<double>& ft) {
+    with_tangential_law(p, [&](auto law) { decltype(law)::force(p, c, vt, fn, bonded, dashpot, dt, spring, ft); });
+  }
+};
+
+// The sub-models a pair (or a whole scene) uses: what the force loop is compiled for.
+struct ModelChoice {
+  NormalLaw normal = NormalLaw::Cundall;
+  TangentialLaw tangential = TangentialLaw::Coulomb;
+  bool operator==(const ModelChoice&) const = default;
+};
+
 // The damping model of a pair: its normal law's.
 template <class F>
 decltype(auto) with_damping(const PairParams& p, F&& f) {
   return with_normal_law(p.law, [&](auto law) { return f(typename decltype(law)::Damping{}); });
 }
 
-// The scene keys a material with normal law `law` reads: its law's, then its damping's and its
-// tangential law's, each once, in that order (a key's default_key comes before it).
-inline std::vector<PropertyKey> property_keys(NormalLaw law) {
+// The scene keys a material with normal law `law` and tangential law `tangential` reads: its normal
+// law's, then its damping's and its tangential law's, each once, in that order (a key's
+// default_key comes before it).
+inline std::vector<PropertyKey> property_keys(NormalLaw law, TangentialLaw tangential) {
   std::vector<PropertyKey> keys;
   auto add = [&](const auto& list) {
     for (const PropertyKey& k : list)
       if (std::none_of(keys.begin(), keys.end(), [&](const PropertyKey& o) { return o.keyword == k.keyword; })) keys.push_back(k);
   };
   with_normal_law(law, [&](auto m) { add(decltype(m)::keys), add(decltype(m)::Damping::keys); });
-  TangentialLaws::with(0, [&](auto m) { add(decltype(m)::keys); });
+  with_tangential_law(tangential, [&](auto m) { add(decltype(m)::keys); });
   return keys;
 }
 // Every key of every model, each once: what a checkpoint stores per material.
 inline std::vector<PropertyKey> all_property_keys() {
   std::vector<PropertyKey> keys;
   for (int c = 0; c < kNormalLaws; ++c)
-    for (const PropertyKey& k : property_keys(static_cast<NormalLaw>(c)))
-      if (std::none_of(keys.begin(), keys.end(), [&](const PropertyKey& o) { return o.keyword == k.keyword; })) keys.push_back(k);
+    for (int t = 0; t < kTangentialLaws; ++t)
+      for (const PropertyKey& k : property_keys(static_cast<NormalLaw>(c), static_cast<TangentialLaw>(t)))
+        if (std::none_of(keys.begin(), keys.end(), [&](const PropertyKey& o) { return o.keyword == k.keyword; })) keys.push_back(k);
   return keys;
 }
-// The normal laws that read a key, e.g. "liu, mendes" (for messages).
+// The laws that read a key, e.g. "law = \"liu\", law = \"mendes\"" (for messages).
 inline std::string laws_reading(std::string_view keyword) {
   std::string list;
+  const auto reads = [&](const auto& keys) {
+    return std::any_of(std::begin(keys), std::end(keys), [&](const PropertyKey& k) { return k.keyword == keyword; });
+  };
+  const auto add = [&](std::string_view key, std::string_view name) {
+    list += (list.empty() ? "" : ", ") + std::string(key) + " = \"" + std::string(name) + "\"";
+  };
   for (int c = 0; c < kNormalLaws; ++c)
-    for (const PropertyKey& k : property_keys(static_cast<NormalLaw>(c)))
-      if (k.keyword == keyword) list += (list.empty() ? "" : ", ") + std::string(NormalLaws::name(c));
+    with_normal_law(static_cast<NormalLaw>(c), [&](auto m) {
+      if (reads(decltype(m)::keys) || reads(decltype(m)::Damping::keys)) add("law", decltype(m)::keyword);
+    });
+  for (int t = 0; t < kTangentialLaws; ++t)
+    with_tangential_law(static_cast<TangentialLaw>(t), [&](auto m) {
+      if (reads(decltype(m)::keys)) add("tangential", decltype(m)::keyword);
+    });
   return list;
 }
 
-// The constants of a material pair with normal law `law` from its properties: each sub-model
-// derives its own; the damping last, as it reads the stiffnesses.
-inline PairParams derive_pair_params(NormalLaw law, const PairProperties& q) {
+// The constants of a material pair with sub-models `models` from its properties: each sub-model
+// derives its own; the damping last, as it reads the normal stiffness.
+inline PairParams derive_pair_params(ModelChoice models, const PairProperties& q) {
   PairParams p;
-  p.law = law;
-  with_normal_law(law, [&](auto m) { m.derive(p, q); });
-  TangentialLaws::with(0, [&](auto m) { m.derive(p, q); });
+  p.law = models.normal;
+  p.tangential = models.tangential;
+  with_normal_law(p.law, [&](auto m) { m.derive(p, q); });
+  with_tangential_law(p, [&](auto m) { m.derive(p, q); });
   with_damping(p, [&](auto m) { m.derive(p, q); });
   return p;
-}
-
-// The tangential model of a pair: one today, shared by every pair (a second one adds a code to
-// PairParams).
-template <class F>
-decltype(auto) with_tangential_law(const PairParams& /*p*/, F&& f) {
-  return TangentialLaws::with(0, f);
 }
 
 }  // namespace dem

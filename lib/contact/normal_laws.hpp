@@ -143,11 +143,7 @@ struct HertzNormal {
   static double stiffness(const PairParams& p, const ContactScale& scale) {
     return 1.5 * p.hertz_modulus * std::sqrt(scale.radius * scale.overlap);
   }
-  static constexpr PropertyKey keys[] = {
-      {.keyword = "young_modulus", .number = &ContactProperties::young_modulus, .lo = 0,
-       .hi = std::numeric_limits<double>::infinity(), .lo_open = true, .unit = "Pa", .si_unit = "Pa", .required = true},
-      {.keyword = "poisson_ratio", .number = &ContactProperties::poisson_ratio, .lo = -1, .hi = 0.5, .lo_open = true,
-       .hi_open = true, .unit = "(dimensionless)", .si_unit = "1", .required = true}};
+  static constexpr PropertyKey keys[] = {kYoungModulusKey, kPoissonRatioKey};
   static void derive(PairParams& p, const PairProperties& pair) {
     const auto compliance = [](const ContactProperties& m) { return (1 - m.poisson_ratio * m.poisson_ratio) / m.young_modulus; };
     p.hertz_modulus = 4.0 / 3.0 / (compliance(pair.a) + compliance(pair.b));  // eq. H2

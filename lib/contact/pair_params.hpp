@@ -9,15 +9,21 @@ namespace dem {
 // eq. H1) grows as u^(3/2).
 enum class NormalLaw { Cundall, Liu, Mendes, Hertz };
 
+// Tangential law of a material pair, a code per entry of TangentialLaws (model_table.hpp):
+// `coulomb`, a linear spring kt (eq. 2.13-2.16); `mindlin`, a spring whose stiffness grows with the
+// contact radius (docs/contact-laws.md eq. H8).
+enum class TangentialLaw { Coulomb, Mindlin };
+
 // Contact constants of one material pair, derived once (STYLE: a law's constants are precomputed).
 struct PairParams {
   NormalLaw law = NormalLaw::Cundall;
+  TangentialLaw tangential = TangentialLaw::Coulomb;
   double kn = 0, kt = 0;
   double mu = 0;        // tan(friction angle)
   double gamma_n = 0;   // damping ratio from restitution, eq. 2.29
   double gamma_t = 0;
   // Dashpots c = damping x sqrt(m*) (eq. 2.28): damping_n = 2 gamma_n sqrt(kn); tangential with the
-  // effective mass 2/7 m* of the contact point (contact/contact_law.hpp): 2 gamma_t sqrt(2/7 kt).
+  // effective mass 2/7 m* of the contact point (contact/tangential.hpp): 2 gamma_t sqrt(2/7 kt).
   double damping_n = 0, damping_t = 0;
   double tensile_strength = 0;  // F [N]
   double cohesion = 0;          // C [N]
@@ -28,6 +34,8 @@ struct PairParams {
   double break_separation = 0;  // separation s at which a bond breaks: F/kn (liu), s0 (mendes), 0
   double hertz_modulus = 0;     // 4/3 E* [Pa] (hertz, eq. H1-H2)
   double hertz_damping = 0;     // 2 zeta sqrt(3/2 hertz_modulus) (hertz, eq. H6)
+  double mindlin_modulus = 0;   // 8 G* [Pa] (mindlin, eq. H8-H9)
+  double mindlin_damping = 0;   // 2 zeta_t sqrt(2/7 mindlin_modulus) (mindlin, eq. H10)
 };
 
 // The sizes a stiffness bound (eq. 2.48) may depend on: a law whose slope grows with the overlap

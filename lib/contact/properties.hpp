@@ -4,6 +4,7 @@
 // rule), so that the scene parser, the mixing of unlike materials (state/materials.hpp) and the
 // checkpoint all read one list; contact/model_table.hpp gathers them.
 #include <algorithm>
+#include <limits>
 #include <string_view>
 
 namespace dem {
@@ -68,5 +69,14 @@ struct PropertyKey {
   std::string_view default_key{};
   double default_value = 0;
 };
+
+// The elastic constants of a material, read by the laws of elastic spheres (hertz, mindlin), which
+// combine the two materials' themselves (no mixing rule).
+inline constexpr PropertyKey kYoungModulusKey = {.keyword = "young_modulus", .number = &ContactProperties::young_modulus, .lo = 0,
+                                                 .hi = std::numeric_limits<double>::infinity(), .lo_open = true, .unit = "Pa",
+                                                 .si_unit = "Pa", .required = true};
+inline constexpr PropertyKey kPoissonRatioKey = {.keyword = "poisson_ratio", .number = &ContactProperties::poisson_ratio, .lo = -1,
+                                                 .hi = 0.5, .lo_open = true, .hi_open = true, .unit = "(dimensionless)",
+                                                 .si_unit = "1", .required = true};
 
 }  // namespace dem

@@ -45,7 +45,7 @@ struct ChunkInput {
 // The candidates [first, last) of one block. Periodic: distances to the nearest image; Fixed: some
 // particles are fixed in place. Both are template parameters so that a scene without them pays
 // nothing.
-template <class Normal, bool Periodic, bool Fixed>
+template <class Model, bool Periodic, bool Fixed>
 double pair_chunk(const ChunkInput& chunk, long first, long last) {
   const PeriodicBox& box = chunk.in.periodic;
   const MaterialTable& materials = chunk.in.materials;
@@ -57,7 +57,7 @@ double pair_chunk(const ChunkInput& chunk, long first, long last) {
   const FoundInChunk found{contact, dx, dy, dz};
   const int m = find_contacts<Periodic>(chunk.candidates, box, first, last, found, chunk.simd);
   // Pass 2 (cundall_four_wide.hpp): the law on them.
-  if constexpr (std::is_same_v<Normal, CundallNormal>)
+  if constexpr (std::is_same_v<Model, ContactModel<CundallNormal>>)
     if (chunk.simd && m >= kMinSimdLaw) return cundall_pair_law_simd<Fixed>(a, materials, dt, found, m, chunk.in.any_bonds);
   // Pass 2, in three loops over the chunk's contacts: their kinematics, their springs turned into
   // the tangent plane, the law. Each loop is short and its contacts independent, so the processor
@@ -80,14 +80,14 @@ double pair_chunk(const ChunkInput& chunk, long first, long last) {
   }
   for (int e = 0; e < m; ++e) {
     const long k = contact[e];
-    a.spring[k] = ContactModel<Normal>::in_tangent_plane(a.spring[k], kin[e].n);
+    a.spring[k] = Model::in_tangent_plane(a.spring[k], kin[e].n);
   }
   for (int e = 0; e < m; ++e) {
     const long k = contact[e];
     const int i = a.slot_i[k], j = a.slot_j[k];
     const ContactKinematics& c = kin[e];
     const PairParams& params = materials.pair(a.material[i], a.material[j]);
-    const ContactForce f = ContactModel<Normal>::evaluate_in_plane(params, c, dt, a.spring[k], a.bonded[k]);
+    const ContactForce f = Model::evaluate_in_plane(params, c, dt, a.spring[k], a.bonded[k]);
     keep_pair_result(a, k, c.n, f.on_i, c.n.cross(f.tangential));
     worst = std::max(worst, relative_overlap_if_larger(c.overlap, std::min(a.radius[i], a.radius[j]), worst));
   }
@@ -122,7 +122,7 @@ struct WallScratch {
 
 // The wall candidates of run r (one particle's, in order) after its pair contacts: whether each is a
 // contact, its law, its loads added to the particle's. Returns the largest relative overlap.
-template <class Normal>
+template <class Model>
 double wall_run(const ForceLoopInput& in, ContactList& wc, ForceBlocks& out, long r, WallScratch& scratch) {
   const Particles& p = in.particles;
   const int first = in.wall_runs[r], n = in.wall_runs[r + 1] - first;
@@ -167,7 +167,7 @@ double wall_run(const ForceLoopInput& in, ContactList& wc, ForceBlocks& out, lon
     c.w_arm = p.radius[i] * p.w[i];
     c.m_eff = p.mass[i];
     c.r_eff = p.radius[i];  // a wall: infinite radius, eq. H3
-    const ContactForce f = ContactModel<Normal>::evaluate(in.materials.pair(p.material[i], in.walls[wc.slot_j[k]].material), c,
+    const ContactForce f = Model::evaluate(in.materials.pair(p.material[i], in.walls[wc.slot_j[k]].material), c,
                                                         in.dt, wc.spring[k], wc.bonded[k]);
     const Vec3 torque_per_radius = c.n.cross(f.tangential);
     wc.active[k] = 1;
@@ -230,7 +230,7 @@ void sum_pair_contacts(const ForceBlocks& out, const ContactSum* sum, const doub
 // The net loads of block b's particles (ForceBlocks): each one's pair contacts in key order, then
 // its wall contacts, then the body forces. Called once every block holding a pair contact of
 // theirs has been computed.
-template <class Normal>
+template <class Model>
 double finish_block(const ForceLoopInput& in, const ContactList& pc, ContactList& wc, ForceBlocks& out, long b,
                     WallScratch& scratch) {
   const Particles& p = in.particles;
@@ -238,12 +238,12 @@ double finish_block(const ForceLoopInput& in, const ContactList& pc, ContactList
   sum_pair_contacts(out, pc.sum.data(), p.radius.data(), lo, hi);
   double worst = 0;
   for (int q = in.wall_block_first[b]; q < in.wall_block_first[b + 1]; ++q)
-    worst = std::max(worst, wall_run<Normal>(in, wc, out, in.wall_run_order[q], scratch));
+    worst = std::max(worst, wall_run<Model>(in, wc, out, in.wall_run_order[q], scratch));
   for (long i = lo; i < hi; ++i) out.body.add_to(p.mass[i], out.force[i].v);
   return worst;
 }
 
-template <class Normal, bool Periodic, bool Fixed>
+template <class Model, bool Periodic, bool Fixed>
 double block_forces(const ForceLoopInput& in, ContactList& pc, ContactList& wc, ForceBlocks& out) {
   const long blocks = static_cast<long>(out.first.size()) - 1;
   out.times.fit(blocks, [&](long b) { return out.first[b + 1] - out.first[b] + 1; });  // candidates, until timed
@@ -268,7 +268,7 @@ double block_forces(const ForceLoopInput& in, ContactList& pc, ContactList& wc, 
       if (t == lagging.thread) std::this_thread::sleep_for(std::chrono::microseconds(lagging.microseconds));
       for (long first = out.first[b]; first < out.first[b + 1]; first += kChunk) {
         const long last = std::min(out.first[b + 1], first + kChunk);
-        worst = std::max(worst, pair_chunk<Normal, Periodic, Fixed>(chunk, first, last));
+        worst = std::max(worst, pair_chunk<Model, Periodic, Fixed>(chunk, first, last));
       }
       std::atomic_ref<long>(out.done[b]).store(tick, std::memory_order_release);
     };
@@ -283,7 +283,7 @@ double block_forces(const ForceLoopInput& in, ContactList& pc, ContactList& wc, 
       const long tb = BlockTimes::now();
       if (b < early) pairs_of(b);
       // Finished now, while its contacts are in cache, unless some lie in another thread's blocks.
-      if (out.needs[b] >= start) worst = std::max(worst, finish_block<Normal>(in, pc, wc, out, b, mine));
+      if (out.needs[b] >= start) worst = std::max(worst, finish_block<Model>(in, pc, wc, out, b, mine));
       else deferred.push_back(b);
       if (b < early) out.times.record(b, tb);
       else out.times.add(b, tb);
@@ -291,18 +291,18 @@ double block_forces(const ForceLoopInput& in, ContactList& pc, ContactList& wc, 
     for (long b : deferred) {
       for (long o = out.needs[b]; o < start; ++o) wait_until_done(out.done, o, tick);
       const long tb = BlockTimes::now();  // after the wait: a block's time is its own work
-      worst = std::max(worst, finish_block<Normal>(in, pc, wc, out, b, mine));
+      worst = std::max(worst, finish_block<Model>(in, pc, wc, out, b, mine));
       out.times.add(b, tb);
     }
   }
   return worst;
 }
 
-template <class Normal>
+template <class Model>
 double all_forces(const ForceLoopInput& in, ContactList& pairs, ContactList& walls, ForceBlocks& loads) {
   if (in.periodic.any())
-    return in.any_fixed ? block_forces<Normal, true, true>(in, pairs, walls, loads) : block_forces<Normal, true, false>(in, pairs, walls, loads);
-  return in.any_fixed ? block_forces<Normal, false, true>(in, pairs, walls, loads) : block_forces<Normal, false, false>(in, pairs, walls, loads);
+    return in.any_fixed ? block_forces<Model, true, true>(in, pairs, walls, loads) : block_forces<Model, true, false>(in, pairs, walls, loads);
+  return in.any_fixed ? block_forces<Model, false, true>(in, pairs, walls, loads) : block_forces<Model, false, false>(in, pairs, walls, loads);
 }
 
 }  // namespace
@@ -358,14 +358,22 @@ void select_wall_contacts(const Vec3* to_wall, const std::uint8_t* touching, int
   }
 }
 
-ForceVariant choose_force_variant(const MaterialTable& materials, bool any_bonds) { return materials.common_law(any_bonds); }
+ForceVariant choose_force_variant(const MaterialTable& materials, bool any_bonds) { return materials.common_models(any_bonds); }
 
-std::string variant_name(ForceVariant v) { return v ? std::string(normal_law_name(*v)) : "mixed"; }
+std::string variant_name(ForceVariant v) {
+  if (!v) return "mixed";
+  const std::string normal(normal_law_name(v->normal));
+  return v->tangential == TangentialLaw::Coulomb ? normal : normal + " + " + std::string(tangential_law_name(v->tangential));
+}
 
 double compute_contact_forces(const ForceLoopInput& in, ForceVariant variant, ContactList& pairs, ContactList& walls,
                               ForceBlocks& loads) {
-  if (!variant) return all_forces<MixedNormal>(in, pairs, walls, loads);
-  return with_normal_law(*variant, [&](auto law) { return all_forces<decltype(law)>(in, pairs, walls, loads); });
+  if (!variant) return all_forces<ContactModel<MixedNormal, MixedTangential>>(in, pairs, walls, loads);
+  return with_normal_law(variant->normal, [&](auto normal) {
+    return with_tangential_law(variant->tangential, [&](auto tangential) {
+      return all_forces<ContactModel<decltype(normal), decltype(tangential)>>(in, pairs, walls, loads);
+    });
+  });
 }
 
 }  // namespace dem

@@ -69,10 +69,10 @@ struct ForceBlocks {
 // shows in the bits; thread -1: none.
 void set_lagging_thread_for_tests(int thread, int microseconds);
 
-// Which instantiation of the force loop runs: the law every pair shares (contact/model_table.hpp;
-// while no contact is bonded, the law each acts as then: liu and mendes act exactly as cundall),
-// or none: the law chosen per contact ("mixed").
-using ForceVariant = std::optional<NormalLaw>;
+// Which instantiation of the force loop runs: the sub-models every pair shares
+// (contact/model_table.hpp; while no contact is bonded, the normal law each acts as then: liu and
+// mendes act exactly as cundall), or none: the laws chosen per contact ("mixed").
+using ForceVariant = std::optional<ModelChoice>;
 ForceVariant choose_force_variant(const MaterialTable& materials, bool any_bonds);
 std::string variant_name(ForceVariant v);
 

@@ -395,12 +395,12 @@ struct ParticleArrays {
 struct MaterialArrays {
   std::vector<std::string> name;
   std::vector<double> density;
-  std::vector<int> law, mixing;
+  std::vector<int> law, tangential, mixing;
   std::vector<std::vector<double>> number;  // per key of all_property_keys() (flags: empty)
   std::vector<std::vector<int>> flag;       // per key (numbers: empty)
 };
 struct PairArrays {
-  std::vector<int> materials, law;
+  std::vector<int> materials, law, tangential;
   std::vector<std::vector<double>> number;  // per key; NaN: not given
   std::vector<std::vector<int>> flag;       // per key; -1: not given
 };
@@ -482,6 +482,7 @@ void material_datasets(Io& io, A& a) {
     else io.doubles(name.c_str(), a.number[k], std::string(keys[k].si_unit).c_str(), m);
   }
   io.int32s("/materials/law", a.law, m);
+  if (io.has("/materials/tangential")) io.int32s("/materials/tangential", a.tangential, m);  // schema 4 on
   io.int32s("/materials/mixing", a.mixing, 4);
 }
 
@@ -492,6 +493,7 @@ void pair_datasets(Io& io, A& a) {
   io.int32s("/pairs/materials", a.materials, -1, 2);
   const long rows = static_cast<long>(a.materials.size() / 2);
   io.int32s("/pairs/law", a.law, rows);
+  if (io.has("/pairs/tangential")) io.int32s("/pairs/tangential", a.tangential, rows);  // schema 4 on
   const std::vector<PropertyKey> keys = all_property_keys();
   for (std::size_t k = 0; k < keys.size(); ++k) {
     const std::string name = "/pairs/" + std::string(keys[k].keyword);
@@ -537,6 +539,7 @@ MaterialArrays material_arrays(const MaterialTable& table) {
   a.number.resize(keys.size()), a.flag.resize(keys.size());
   for (const Material& m : table.materials()) {
     a.name.push_back(m.name), a.density.push_back(m.density), a.law.push_back(static_cast<int>(m.law));
+    a.tangential.push_back(static_cast<int>(m.tangential));
     for (std::size_t k = 0; k < keys.size(); ++k)
       keys[k].flag ? a.flag[k].push_back(m.*keys[k].flag) : a.number[k].push_back(m.*keys[k].number);
   }
@@ -552,6 +555,7 @@ PairArrays pair_arrays(const std::vector<PairOverride>& pairs) {
   a.number.resize(keys.size()), a.flag.resize(keys.size());
   for (const PairOverride& o : pairs) {
     a.materials.push_back(o.a), a.materials.push_back(o.b), a.law.push_back(o.law ? static_cast<int>(*o.law) : -1);
+    a.tangential.push_back(o.tangential ? static_cast<int>(*o.tangential) : -1);
     for (std::size_t k = 0; k < keys.size(); ++k) {
       const bool given = o.gives(keys[k].keyword);
       if (keys[k].flag) a.flag[k].push_back(given ? int{o.values.*keys[k].flag} : -1);
@@ -710,6 +714,8 @@ void read_checkpoint(const std::string& path, Simulation& sim, CheckpointMeta& m
   materials.number.resize(keys.size()), materials.flag.resize(keys.size());
   material_datasets(io, materials);
   const long nm = static_cast<long>(materials.name.size());
+  if (r.schema() >= 4 && materials.tangential.empty() && nm > 0) throw IoError(path + ": /materials/tangential is missing (damaged file)");
+  if (materials.tangential.empty()) materials.tangential.assign(nm, static_cast<int>(TangentialLaw::Coulomb));  // before schema 4
   const auto flag_of = [&](int v, const std::string& name) {
     if (v != 0 && v != 1) throw IoError(path + ": " + name + " holds neither 0 nor 1 (damaged file)");
     return v == 1;
@@ -720,6 +726,9 @@ void read_checkpoint(const std::string& path, Simulation& sim, CheckpointMeta& m
     mats[m].name = materials.name[m];
     mats[m].density = materials.density[m];
     mats[m].law = static_cast<NormalLaw>(materials.law[m]);
+    if (materials.tangential[m] < 0 || materials.tangential[m] >= kTangentialLaws)
+      throw IoError(path + ": /materials/tangential holds an unknown law (damaged file)");
+    mats[m].tangential = static_cast<TangentialLaw>(materials.tangential[m]);
     for (std::size_t k = 0; k < keys.size(); ++k)
       keys[k].flag ? void(mats[m].*keys[k].flag = flag_of(materials.flag[k][m], "/materials/" + std::string(keys[k].keyword)))
                    : void(mats[m].*keys[k].number = materials.number[k][m]);
@@ -732,6 +741,8 @@ void read_checkpoint(const std::string& path, Simulation& sim, CheckpointMeta& m
     pairs.number.resize(keys.size()), pairs.flag.resize(keys.size());
     pair_datasets(io, pairs);
     overrides.resize(pairs.law.size());
+    if (r.schema() >= 4 && pairs.tangential.size() != overrides.size()) throw IoError(path + ": /pairs/tangential is missing (damaged file)");
+    if (pairs.tangential.empty()) pairs.tangential.assign(overrides.size(), -1);  // before schema 4
     for (std::size_t e = 0; e < overrides.size(); ++e) {
       PairOverride& o = overrides[e];
       o.a = pairs.materials[2 * e], o.b = pairs.materials[2 * e + 1];
@@ -739,6 +750,9 @@ void read_checkpoint(const std::string& path, Simulation& sim, CheckpointMeta& m
         throw IoError(path + ": /pairs/materials refers to a material that does not exist (damaged file)");
       if (pairs.law[e] < -1 || pairs.law[e] >= kNormalLaws) throw IoError(path + ": /pairs/law holds an unknown law (damaged file)");
       if (pairs.law[e] >= 0) o.law = static_cast<NormalLaw>(pairs.law[e]);
+      if (pairs.tangential[e] < -1 || pairs.tangential[e] >= kTangentialLaws)
+        throw IoError(path + ": /pairs/tangential holds an unknown law (damaged file)");
+      if (pairs.tangential[e] >= 0) o.tangential = static_cast<TangentialLaw>(pairs.tangential[e]);
       for (std::size_t k = 0; k < keys.size(); ++k) {
         if (keys[k].flag && pairs.flag[k][e] != -1) o.set(keys[k].keyword, flag_of(pairs.flag[k][e], "/pairs/" + std::string(keys[k].keyword)));
         if (!keys[k].flag && !std::isnan(pairs.number[k][e])) o.set(keys[k].keyword, pairs.number[k][e]);

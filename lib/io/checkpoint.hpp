@@ -12,7 +12,7 @@ namespace dem {
 
 // 2: wall motions compose translation, time table, vibration, rotation; 3: [[pair]] overrides
 // (/pairs), contact properties named by their models' keys.
-inline constexpr int kCheckpointSchema = 3;
+inline constexpr int kCheckpointSchema = 4;
 inline constexpr int kOldestReadableSchema = 2;
 inline constexpr const char* kCheckpointFormat = "dem-checkpoint";
 

@@ -283,6 +283,14 @@ const std::string kCundall = "cundall";
 NormalLaw read_law(TableReader& r, const std::string* def) {
   return *normal_law_named(r.choice("law", normal_law_names(), def));  // the table's keywords
 }
+const std::string kCoulomb = "coulomb";
+TangentialLaw read_tangential(TableReader& r, const std::string* def) {
+  return *tangential_law_named(r.choice("tangential", tangential_law_names(), def));
+}
+std::string models_text(ModelChoice m) {
+  return "law = \"" + std::string(normal_law_name(m.normal)) + "\", tangential = \"" + std::string(tangential_law_name(m.tangential)) +
+         "\"";
+}
 
 // One contact property by its key (contact/properties.hpp), stored in `into`; returns it.
 double read_property(TableReader& r, const PropertyKey& k, ContactProperties& into) {
@@ -291,14 +299,17 @@ double read_property(TableReader& r, const PropertyKey& k, ContactProperties& in
   return into.*k.number = r.number(key, k.lo, k.hi, std::string(k.unit).c_str(), k.lo_open, k.hi_open);
 }
 
+bool reads_key(const std::vector<PropertyKey>& keys, std::string_view keyword) {
+  return std::any_of(keys.begin(), keys.end(), [&](const PropertyKey& o) { return o.keyword == keyword; });
+}
+
 // A key that only other laws' models read is an error that says whose it is.
-void refuse_keys_of_other_laws(TableReader& r, NormalLaw law) {
-  const std::vector<PropertyKey> own = property_keys(law);
+void refuse_keys_of_other_laws(TableReader& r, ModelChoice models) {
+  const std::vector<PropertyKey> own = property_keys(models.normal, models.tangential);
   for (const PropertyKey& k : all_property_keys()) {
     const std::string key(k.keyword);
-    if (std::any_of(own.begin(), own.end(), [&](const PropertyKey& o) { return o.keyword == k.keyword; }) || !r.has(key)) continue;
-    r.fail(key, "a property of law " + laws_reading(k.keyword) + ", not of this one (law = \"" + std::string(normal_law_name(law)) +
-                    "\")");
+    if (reads_key(own, k.keyword) || !r.has(key)) continue;
+    r.fail(key, "a property of " + laws_reading(k.keyword) + ", not of these laws (" + models_text(models) + ")");
   }
 }
 
@@ -322,16 +333,20 @@ void read_pairs(TableReader& top, Scene& sc) {
     for (const PairOverride& x : sc.pairs)
       if ((x.a == o.a && x.b == o.b) || (x.a == o.b && x.b == o.a)) r.fail_at(&mn, "materials", "a [[pair]] for these materials is already given");
     if (r.has("law")) o.law = read_law(r, nullptr);
-    const NormalLaw law = o.law ? *o.law : sc.materials[o.a].law;
-    refuse_keys_of_other_laws(r, law);
+    if (r.has("tangential")) o.tangential = read_tangential(r, nullptr);
+    const ModelChoice models{o.law ? *o.law : sc.materials[o.a].law, o.tangential ? *o.tangential : sc.materials[o.a].tangential};
+    refuse_keys_of_other_laws(r, models);
+    const std::vector<PropertyKey> keys = property_keys(models.normal, models.tangential);
     // A law that reads a property of each material (not mixed) joins only materials that give it.
-    for (const PropertyKey& k : property_keys(law))
-      for (const int side : {o.a, o.b})
-        if (!k.mixing && !k.flag && sc.materials[side].law != law)
-          r.fail_at(&mn, "materials", "law \"" + std::string(normal_law_name(law)) + "\" reads " + std::string(k.keyword) +
-                                          " of each material, and material \"" + sc.materials[side].name + "\" (law \"" +
-                                          std::string(normal_law_name(sc.materials[side].law)) + "\") has none");
-    for (const PropertyKey& k : property_keys(law)) {
+    for (const PropertyKey& k : keys)
+      for (const int side : {o.a, o.b}) {
+        const Material& m = sc.materials[side];
+        if (!k.mixing && !k.flag && !reads_key(property_keys(m.law, m.tangential), k.keyword))
+          r.fail_at(&mn, "materials", "the pair's laws (" + models_text(models) + ") read " + std::string(k.keyword) +
+                                          " of each material, and material \"" + m.name + "\" (" +
+                                          models_text({m.law, m.tangential}) + ") has none");
+      }
+    for (const PropertyKey& k : keys) {
       if (!r.has(std::string(k.keyword))) continue;
       if (!k.mixing && !k.flag)
         r.fail(std::string(k.keyword), "a property of each material, which the law combines itself: give it in the [[material]]");
@@ -340,17 +355,23 @@ void read_pairs(TableReader& top, Scene& sc) {
     r.finish();
     sc.pairs.push_back(o);
   }
-  // Unlike normal laws have no mixing rule: the pair must say which law applies.
+  // Unlike laws have no mixing rule: the pair must say which law applies.
   for (std::size_t x = 0; x < sc.materials.size(); ++x)
     for (std::size_t y = x + 1; y < sc.materials.size(); ++y) {
-      if (sc.materials[x].law == sc.materials[y].law) continue;
-      bool given = false;
-      for (const PairOverride& o : sc.pairs)
-        given = given || (((o.a == int(x) && o.b == int(y)) || (o.a == int(y) && o.b == int(x))) && o.law);
-      if (!given)
-        throw InputError(top.file() + ": materials \"" + sc.materials[x].name + "\" and \"" + sc.materials[y].name +
-                         "\" use different laws; add a [[pair]] with materials = [\"" + sc.materials[x].name + "\", \"" +
-                         sc.materials[y].name + "\"] and law = \"...\" (allowed " + quoted_list(normal_law_names()) + ")");
+      const Material &mx = sc.materials[x], &my = sc.materials[y];
+      const auto check = [&](bool same, const char* kind, const char* key, auto gives, const std::vector<std::string>& allowed) {
+        if (same) return;
+        bool given = false;
+        for (const PairOverride& o : sc.pairs)
+          given = given || (((o.a == int(x) && o.b == int(y)) || (o.a == int(y) && o.b == int(x))) && gives(o));
+        if (!given)
+          throw InputError(top.file() + ": materials \"" + mx.name + "\" and \"" + my.name + "\" use different " + kind +
+                           " laws; add a [[pair]] with materials = [\"" + mx.name + "\", \"" + my.name + "\"] and " + key +
+                           " = \"...\" (allowed " + quoted_list(allowed) + ")");
+      };
+      check(mx.law == my.law, "normal", "law", [](const PairOverride& o) { return o.law.has_value(); }, normal_law_names());
+      check(mx.tangential == my.tangential, "tangential", "tangential", [](const PairOverride& o) { return o.tangential.has_value(); },
+            tangential_law_names());
     }
 }
 
@@ -367,9 +388,10 @@ void read_materials(TableReader& top, Scene& sc) {
     m.name = r.string("name");
     if (find_material(sc.materials, m.name) >= 0) r.fail("name", "duplicate material name");
     m.law = read_law(r, &kCundall);
+    m.tangential = read_tangential(r, &kCoulomb);
     m.density = r.number("density", 0, kInf, "kg/m^3", true);
-    refuse_keys_of_other_laws(r, m.law);
-    const std::vector<PropertyKey> keys = property_keys(m.law);
+    refuse_keys_of_other_laws(r, {m.law, m.tangential});
+    const std::vector<PropertyKey> keys = property_keys(m.law, m.tangential);
     for (const PropertyKey& k : keys) {
       const std::string key(k.keyword);
       if (r.has(key)) {

@@ -39,8 +39,8 @@ double normal_energy_bound(const PairParams& q, double u, double r_eff, bool bon
   return with_normal_law(q.law, [&](auto law) { return law.stored_energy(q, u, r_eff, bonded); });
 }
 
-double spring_energy(const PairParams& q, const Vec3& spring) {
-  return with_tangential_law(q, [&](auto law) { return law.stored_energy(q, spring); });
+double spring_energy(const PairParams& q, const Vec3& spring, double u, double r_eff) {
+  return with_tangential_law(q, [&](auto law) { return law.stored_energy(q, spring, u, r_eff); });
 }
 
 }  // namespace
@@ -55,14 +55,14 @@ double stored_energy_bound(const Particles& p, const MaterialTable& materials, c
     const PairParams& q = materials.pair(p.material[i], p.material[j]);
     const double u = p.radius[i] + p.radius[j] - separation(p, box, i, j).norm();
     const double r_eff = p.radius[i] * p.radius[j] / (p.radius[i] + p.radius[j]);
-    e += normal_energy_bound(q, u, r_eff, pairs.bonded[k]) + spring_energy(q, pairs.spring[k]);
+    e += normal_energy_bound(q, u, r_eff, pairs.bonded[k]) + spring_energy(q, pairs.spring[k], u, r_eff);
   }
   for (std::size_t k = 0; k < wall_contacts.size(); ++k) {
     if (!wall_contacts.active[k]) continue;
     const int i = wall_contacts.slot_i[k], w = wall_contacts.slot_j[k];
     const PairParams& q = materials.pair(p.material[i], walls[w].material);
     const double u = p.radius[i] - (closest_point(geometry[w], p.x[i]) - p.x[i]).norm();
-    e += normal_energy_bound(q, u, p.radius[i], wall_contacts.bonded[k]) + spring_energy(q, wall_contacts.spring[k]);
+    e += normal_energy_bound(q, u, p.radius[i], wall_contacts.bonded[k]) + spring_energy(q, wall_contacts.spring[k], u, p.radius[i]);
   }
   return e;
 }

@@ -44,7 +44,8 @@ MaterialTable::MaterialTable(std::vector<Material> materials, MixingRules rules,
         else if (k.mixing) q.mixed.*k.number = mix(rules_.*k.mixing, A.*k.number, B.*k.number);
       }
       // Unlike laws need an explicit [[pair]] (the parser checks); like laws carry over.
-      pairs_[a * n + b] = derive_pair_params((o && o->law) ? *o->law : A.law, q);
+      const ModelChoice models{(o && o->law) ? *o->law : A.law, (o && o->tangential) ? *o->tangential : A.tangential};
+      pairs_[a * n + b] = derive_pair_params(models, q);
     }
 }
 
@@ -58,7 +59,7 @@ double MaterialTable::max_stiffness(const ContactScale& scale) const {
   double k = 0;
   for (const PairParams& p : pairs_) {
     k = std::max({k, with_normal_law(p.law, [&](auto law) { return law.stiffness(p, scale); }),
-                  with_tangential_law(p, [&](auto law) { return law.stiffness(p); })});
+                  with_tangential_law(p, [&](auto law) { return law.stiffness(p, scale); })});
   }
   return k;
 }
@@ -69,12 +70,12 @@ double MaterialTable::max_break_separation() const {
   return s;
 }
 
-std::optional<NormalLaw> MaterialTable::common_law(bool bonds) const {
-  if (pairs_.empty()) return NormalLaw::Cundall;
-  const auto law = [&](const PairParams& p) { return bonds ? p.law : law_without_bonds(p.law); };
+std::optional<ModelChoice> MaterialTable::common_models(bool bonds) const {
+  if (pairs_.empty()) return ModelChoice{};
+  const auto models = [&](const PairParams& p) { return ModelChoice{bonds ? p.law : law_without_bonds(p.law), p.tangential}; };
   for (const PairParams& p : pairs_)
-    if (law(p) != law(pairs_[0])) return std::nullopt;
-  return law(pairs_[0]);
+    if (!(models(p) == models(pairs_[0]))) return std::nullopt;
+  return models(pairs_[0]);
 }
 
 }  // namespace dem

@@ -5,23 +5,26 @@
 #include <string_view>
 #include <vector>
 
+#include "contact/model_table.hpp"
 #include "contact/pair_params.hpp"
 #include "contact/properties.hpp"
 
 namespace dem {
 
-// A material: its name and density, its normal law, and its contact properties (each read by the
-// sub-model that owns its key, contact/model_table.hpp).
+// A material: its name and density, its normal and tangential laws, and its contact properties
+// (each read by the sub-model that owns its key, contact/model_table.hpp).
 struct Material : ContactProperties {
   std::string name;
   double density = 2500;  // [kg/m^3]
   NormalLaw law = NormalLaw::Cundall;
+  TangentialLaw tangential = TangentialLaw::Coulomb;
 };
 
 // Explicit properties for one material pair, overriding the mixing rules ([[pair]] in a scene).
 struct PairOverride {
   int a = 0, b = 0;
   std::optional<NormalLaw> law;
+  std::optional<TangentialLaw> tangential;
   ContactProperties values;         // those named in `given`
   std::vector<std::string> given;   // keywords of the properties given
   bool gives(std::string_view keyword) const;
@@ -44,9 +47,9 @@ class MaterialTable {
   // K_max of eq. 2.48 (incl. the mendes tensile slope; hertz's at the scale's radius and overlap).
   double max_stiffness(const ContactScale& scale) const;
   double max_break_separation() const;          // how far apart a bonded pair can still hold
-  // The law all pairs share, or nullopt when the scene mixes laws; without `bonds`, the law each
-  // acts as while no contact is bonded.
-  std::optional<NormalLaw> common_law(bool bonds) const;
+  // The sub-models all pairs share, or nullopt when the scene mixes them; without `bonds`, the
+  // normal law each acts as while no contact is bonded.
+  std::optional<ModelChoice> common_models(bool bonds) const;
 
  private:
   std::vector<Material> materials_;
