@@ -68,6 +68,25 @@ TEST(SceneParser, HertzMaterialParses) {
   EXPECT_NEAR(t.pair(0, 0).hertz_modulus, 4.0 / 3.0 * 2e7 / (2 * (1 - 0.25 * 0.25)), 1e-6);
 }
 
+// Hertz-Mindlin, as a LIGGGHTS scene's `model hertz tangential history`; and a [[pair]] that
+// joins a mindlin material with a coulomb one by naming the tangential law.
+TEST(SceneParser, HertzMindlinMaterialParses) {
+  const std::string mindlin = replace(kValid, "kn = 5.0e4", "law = \"hertz\"\ntangential = \"mindlin\"\nyoung_modulus = 2.0e7\npoisson_ratio = 0.25");
+  const Scene s = parse_scene(mindlin, "scene.toml");
+  ASSERT_EQ(s.materials[0].tangential, TangentialLaw::Mindlin);
+  const MaterialTable t(s.materials, s.mixing, s.pairs);
+  const double g = 2e7 / (2 * 1.25);
+  EXPECT_NEAR(t.pair(0, 0).mindlin_modulus, 8 / (2 * (2 - 0.25) / g), 1e-6);
+  const Scene mixed = parse_scene(replace(mindlin, "[[wall]]", "[[material]]\nname = \"steel\"\nlaw = \"hertz\"\ndensity = 7800.0\n"
+                                                               "young_modulus = 2e11\npoisson_ratio = 0.3\nkt = 1e6\n\n[[pair]]\n"
+                                                               "materials = [\"glass\", \"steel\"]\ntangential = \"mindlin\"\n\n[[wall]]"),
+                                  "scene.toml");
+  const MaterialTable m(mixed.materials, mixed.mixing, mixed.pairs);
+  EXPECT_EQ(m.pair(1, 1).tangential, TangentialLaw::Coulomb);
+  EXPECT_EQ(m.pair(0, 1).tangential, TangentialLaw::Mindlin);
+  EXPECT_GT(m.pair(0, 1).mindlin_modulus, 0);
+}
+
 TEST(SceneParser, ValidSceneParses) {
   const Scene s = parse_scene(kValid, "scene.toml");
   ASSERT_EQ(s.materials.size(), 1u);
