@@ -103,12 +103,21 @@ void variants() {
     const char* name;
     NormalLaw law;
     bool extra_walls, bonds;
+    TangentialLaw tangential = TangentialLaw::Coulomb;
+    RollingLaw rolling = RollingLaw::None;
   };
-  for (const Case& c : {Case{"cundall, 6 walls", NormalLaw::Cundall, false, false},
-                        Case{"cundall, 6 more walls far away (no contacts)", NormalLaw::Cundall, true, false},
-                        Case{"liu law, no bond formed", NormalLaw::Liu, false, false},
-                        Case{"liu, every contact bonded", NormalLaw::Liu, false, true},
-                        Case{"mendes, every contact bonded", NormalLaw::Mendes, false, true}}) {
+  const Case cases[] = {{"cundall, 6 walls", NormalLaw::Cundall, false, false},
+                        {"cundall, 6 more walls far away (no contacts)", NormalLaw::Cundall, true, false},
+                        {"liu law, no bond formed", NormalLaw::Liu, false, false},
+                        {"liu, every contact bonded", NormalLaw::Liu, false, true},
+                        {"mendes, every contact bonded", NormalLaw::Mendes, false, true},
+                        {"cundall + cdt rolling resistance", NormalLaw::Cundall, false, false, TangentialLaw::Coulomb, RollingLaw::ConstantTorque},
+                        {"cundall + epsd2 rolling resistance", NormalLaw::Cundall, false, false, TangentialLaw::Coulomb, RollingLaw::ElasticPlastic},
+                        {"hertz, linear tangential spring", NormalLaw::Hertz, false, false},
+                        {"hertz + mindlin", NormalLaw::Hertz, false, false, TangentialLaw::Mindlin},
+                        {"hertz + mindlin + cdt", NormalLaw::Hertz, false, false, TangentialLaw::Mindlin, RollingLaw::ConstantTorque},
+                        {"hertz + mindlin + epsd2", NormalLaw::Hertz, false, false, TangentialLaw::Mindlin, RollingLaw::ElasticPlastic}};
+  for (const Case& c : cases) {
     double ns[2];
     std::size_t contacts = 0;
     std::string variant;
@@ -118,6 +127,12 @@ void variants() {
       m.law = c.law;
       m.tensile_strength = 1e-2;  // N: strong enough that bonds hold over the run
       m.cohesion = 1e-2;
+      m.tangential = c.tangential;
+      m.rolling = c.rolling;
+      m.rolling_friction = 0.1;
+      // Hertz as stiff as kn = 2000 N/m where a bead carries its weight (u ~ 5e-8 m).
+      m.young_modulus = 5e8;
+      m.poisson_ratio = 0.3;
       sim.materials = MaterialTable({m}, {});
       // Removing the walls would let the loaded pile spring apart; instead, the cost of walls is
       // shown by adding six that touch nothing (each particle is still tested against each wall).

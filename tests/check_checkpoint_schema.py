@@ -41,6 +41,8 @@ def main(path, expect_writer):
             "materials/tensile_strength": ("f", (m,), "N"), "materials/cohesion": ("f", (m,), "N"),
             "materials/epsilon": ("f", (m,), "1"), "materials/law": ("i", (m,), None),
             "materials/tangential": ("i", (m,), None), "pairs/tangential": ("i", (npairs,), None),
+            "materials/rolling": ("i", (m,), None), "pairs/rolling": ("i", (npairs,), None),
+            "materials/rolling_friction": ("f", (m,), "1"), "pairs/rolling_friction": ("f", (npairs,), "1"),
             "materials/no_viscous_attraction": ("i", (m,), None),
             "materials/young_modulus": ("f", (m,), "Pa"), "materials/poisson_ratio": ("f", (m,), "1"),
             "pairs/young_modulus": ("f", (npairs,), "Pa"), "pairs/poisson_ratio": ("f", (npairs,), "1"),
@@ -75,6 +77,9 @@ def main(path, expect_writer):
         assert f["contacts/pair_spring"].shape == (f["contacts/pair_ids"].shape[0], 3)
         assert f["contacts/wall_spring"].shape == (f["contacts/wall_ids"].shape[0], 3)
         assert f["contacts/pair_spring"].attrs["units"] == b"N"
+        for kind in ("pair", "wall"):
+            assert f[f"contacts/{kind}_rolling"].shape == (f[f"contacts/{kind}_ids"].shape[0], 3)
+            assert f[f"contacts/{kind}_rolling"].attrs["units"] == b"N m"
         assert f["contacts/pair_bonded"].shape == (f["contacts/pair_ids"].shape[0],)
         assert f["contacts/wall_bonded"].shape == (f["contacts/wall_ids"].shape[0],)
         assert f["contacts/pair_bonded"].dtype == np.uint8

@@ -277,14 +277,21 @@ TEST_F(CheckpointTest, SchemaThreeIsReadWithCoulombSprings) {
   EXPECT_EQ(s.materials.pair(0, 1).mu, std::tan(33 * (M_PI / 180))) << "the pair's own angle";
 }
 
-// Tangential laws, a material's and a pair's, come back with the constants they derive.
-TEST_F(CheckpointTest, TangentialLawsRoundTrip) {
+// Tangential and rolling laws, a material's and a pair's, come back with the constants they
+// derive, and so does the rolling history of each contact.
+TEST_F(CheckpointTest, TangentialAndRollingLawsRoundTrip) {
   Material glass, steel;
   glass.name = "glass", glass.young_modulus = 6e10, glass.poisson_ratio = 0.23;
   steel.name = "steel", steel.young_modulus = 2e11, steel.poisson_ratio = 0.3, steel.tangential = TangentialLaw::Mindlin;
+  steel.rolling = RollingLaw::ElasticPlastic, steel.rolling_friction = 0.2;
   PairOverride pair;
-  pair.b = 1, pair.tangential = TangentialLaw::Mindlin;
+  pair.b = 1, pair.tangential = TangentialLaw::Mindlin, pair.rolling = RollingLaw::ConstantTorque;
+  pair.set("rolling_friction", 0.05);
   sim_.materials = MaterialTable({glass, steel}, {}, {pair});
+  ContactList pairs = sim_.pair_contacts(), walls = sim_.wall_contacts();
+  ASSERT_GT(pairs.size(), 0u);
+  for (std::size_t k = 0; k < pairs.size(); ++k) pairs.rolling[k] = Vec3(1e-6 * k, -2e-7, 3e-9 * k);
+  sim_.set_contacts(pairs, walls);
   write_checkpoint(path_, sim_, meta_);
   Simulation s;
   CheckpointMeta m;
@@ -296,6 +303,11 @@ TEST_F(CheckpointTest, TangentialLawsRoundTrip) {
   EXPECT_EQ(s.materials.pair(0, 1).tangential, TangentialLaw::Mindlin);
   EXPECT_EQ(s.materials.pair(0, 1).mindlin_modulus, sim_.materials.pair(0, 1).mindlin_modulus);
   EXPECT_GT(s.materials.pair(0, 1).mindlin_modulus, 0);
+  EXPECT_EQ(s.materials.materials()[1].rolling, RollingLaw::ElasticPlastic);
+  EXPECT_EQ(s.materials.pair(1, 1).rolling_friction, 0.2);
+  EXPECT_EQ(s.materials.pair(0, 1).rolling, RollingLaw::ConstantTorque);
+  EXPECT_EQ(s.materials.pair(0, 1).rolling_friction, 0.05);
+  EXPECT_EQ(s.pair_contacts().rolling, pairs.rolling);
 }
 
 TEST_F(CheckpointTest, MissingDataset) {

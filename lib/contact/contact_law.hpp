@@ -5,10 +5,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <type_traits>
 
 #include "contact/damping.hpp"
 #include "contact/kinematics.hpp"
 #include "contact/normal_laws.hpp"
+#include "contact/rolling.hpp"
 #include "contact/tangential.hpp"
 #include "core/types.hpp"
 #include "simd/lanes.hpp"
@@ -16,19 +18,23 @@
 namespace dem {
 
 // A contact model composed of sub-models, each in its own file that owns everything about it: the
-// elastic normal law (normal_laws.hpp), its damping (damping.hpp), the tangential law with its
-// dashpot and failure surface (tangential.hpp). The force loop is compiled for the combination a
-// scene uses.
-template <class Normal, class Tangential = CoulombSpring, class Damping = typename Normal::Damping>
+// elastic normal law (normal_laws.hpp) with its damping (damping.hpp), the tangential law with its
+// dashpot and failure surface (tangential.hpp), the rolling resistance (rolling.hpp). The force
+// loop is compiled for the combination a scene uses.
+template <class Normal, class Tangential = CoulombSpring, class Rolling = NoRolling>
 struct ContactModel {
   using NormalModel = Normal;
   using TangentialModel = Tangential;  // the four-wide loop turns springs with it
+  using RollingModel = Rolling;
+  using Damping = typename Normal::Damping;
+  static constexpr bool has_rolling = !std::is_same_v<Rolling, NoRolling>;
 
-  // The law for a spring already in the tangent plane (Tangential::in_tangent_plane): `spring` is
-  // updated in place, `bonded` (Phi) cleared where the bond breaks.
+  // The law for springs already in the tangent plane (Tangential::in_tangent_plane): `spring` and
+  // `rolling` (the rolling law's history, if it keeps one) are updated in place, `bonded` (Phi)
+  // cleared where the bond breaks.
   template <class L, class P, class M>
   [[gnu::always_inline]] static LaneForce<L> evaluate_in_plane(const P& p, const LaneKinematics<L>& c, double dt,
-                                                                lanes::Triple<L>& spring, M& bonded) {
+                                                                lanes::Triple<L>& spring, M& bonded, lanes::Triple<L>& rolling) {
     using namespace lanes;
     const L zero(0.0);
     const Triple<L>& n = c.n;
@@ -45,29 +51,45 @@ struct ContactModel {
     LaneForce<L> f;
     Tangential::force(p, c, vt, fn, bonded, c_t, dt, spring, f.tangential);
     f.on_i = (-fn) * n + f.tangential;
+    f.couple = Rolling::couple(p, c, f_el, Tangential::stiffness_at(p, c), dt, rolling);
     return f;
+  }
+  template <class L, class P, class M>
+  [[gnu::always_inline]] static LaneForce<L> evaluate_in_plane(const P& p, const LaneKinematics<L>& c, double dt,
+                                                                lanes::Triple<L>& spring, M& bonded) {
+    static_assert(!Rolling::has_history, "a rolling law with history needs its history passed");
+    lanes::Triple<L> none{};
+    return evaluate_in_plane(p, c, dt, spring, bonded, none);
   }
 
   // One contact with Eigen's vectors, for the plain loops, the wall contacts and the tests.
-  // `spring` is turned into the current tangent plane and updated in place; `bonded` is Phi,
-  // cleared when the bond breaks.
+  // `spring` and `rolling` are turned into the current tangent plane and updated in place;
+  // `bonded` is Phi, cleared when the bond breaks.
+  [[gnu::always_inline]] static ContactForce evaluate(const PairParams& p, const ContactKinematics& c, double dt, Vec3& spring,
+                                                      std::uint8_t& bonded, Vec3& rolling) {
+    spring = in_tangent_plane(spring, c.n);
+    if constexpr (Rolling::has_history) rolling = in_tangent_plane(rolling, c.n);
+    return evaluate_in_plane(p, c, dt, spring, bonded, rolling);
+  }
   [[gnu::always_inline]] static ContactForce evaluate(const PairParams& p, const ContactKinematics& c, double dt, Vec3& spring,
                                                       std::uint8_t& bonded) {
-    spring = in_tangent_plane(spring, c.n);
-    return evaluate_in_plane(p, c, dt, spring, bonded);
+    Vec3 none = Vec3::Zero();
+    return evaluate(p, c, dt, spring, bonded, none);
   }
   [[gnu::always_inline]] static Vec3 in_tangent_plane(const Vec3& spring, const Vec3& n) {
     return lanes::vec3(Tangential::in_tangent_plane(lanes::triple(spring), lanes::triple(n)));
   }
   [[gnu::always_inline]] static ContactForce evaluate_in_plane(const PairParams& p, const ContactKinematics& c, double dt, Vec3& spring,
-                                                               std::uint8_t& bonded) {
-    const LaneKinematics<double> k{lanes::triple(c.n), c.overlap, lanes::triple(c.v_rel), lanes::triple(c.w_arm), c.m_eff, c.r_eff};
-    lanes::Triple<double> s = lanes::triple(spring);
+                                                               std::uint8_t& bonded, Vec3& rolling) {
+    const LaneKinematics<double> k{lanes::triple(c.n),  c.overlap, lanes::triple(c.v_rel), lanes::triple(c.w_arm),
+                                   c.m_eff, c.r_eff, lanes::triple(c.w_rel)};
+    lanes::Triple<double> s = lanes::triple(spring), r = lanes::triple(rolling);
     bool b = bonded != 0;
-    const LaneForce<double> f = evaluate_in_plane(p, k, dt, s, b);
+    const LaneForce<double> f = evaluate_in_plane(p, k, dt, s, b, r);
     spring = lanes::vec3(s);
+    if constexpr (Rolling::has_history) rolling = lanes::vec3(r);
     bonded = b;
-    return {lanes::vec3(f.on_i), lanes::vec3(f.tangential)};
+    return {lanes::vec3(f.on_i), lanes::vec3(f.tangential), lanes::vec3(f.couple)};
   }
 };
 

@@ -25,6 +25,7 @@ void ContactList::resize(std::size_t n) {
   resize_with_headroom(slot_i, n, -1);
   resize_with_headroom(slot_j, n, -1);
   resize_with_headroom(spring, n, Vec3(Vec3::Zero()));
+  resize_with_headroom(rolling, n, Vec3(Vec3::Zero()));
   resize_with_headroom(bonded, n, std::uint8_t{0});
   resize_with_headroom(active, n, std::uint8_t{0});
   resize_with_headroom(normal, n, Vec3(Vec3::Zero()));
@@ -37,6 +38,7 @@ void ContactList::reserve(std::size_t n) {
   slot_i.reserve(n);
   slot_j.reserve(n);
   spring.reserve(n);
+  rolling.reserve(n);
   bonded.reserve(n);
   active.reserve(n);
   normal.reserve(n);
@@ -49,6 +51,7 @@ void ContactList::push_back_from(const ContactList& from, std::size_t k) {
   slot_i.push_back(from.slot_i[k]);
   slot_j.push_back(from.slot_j[k]);
   spring.push_back(from.spring[k]);
+  rolling.push_back(from.rolling[k]);
   bonded.push_back(from.bonded[k]);
   active.push_back(from.active[k]);
   normal.push_back(from.normal[k]);
@@ -84,6 +87,7 @@ void carry_field(std::vector<T>& field, const std::vector<int>& from, const KeyO
 // `list` (-1: none).
 void take_found(ContactList& list, const std::vector<FoundContact>& found, const KeyOrder& place, const std::vector<int>& from) {
   carry_field(list.spring, from, place, Vec3(Vec3::Zero()));
+  carry_field(list.rolling, from, place, Vec3(Vec3::Zero()));
   carry_field(list.bonded, from, place, std::uint8_t{0});
   // Whether it was a contact at the last step: the wall loop hands a lost contact's spring to a
   // new one of the same particle (a sphere rolling from one mesh element onto the next).

@@ -5,7 +5,7 @@
 // During a run the list holds every candidate pair of the neighbour list; `active` marks those
 // that touch (or hold by a bond) this step. History lives on the candidates, so nothing is merged,
 // copied or compacted per step: only a rebuild of the neighbour list carries it over, by key.
-// A candidate that is no contact holds a zero spring and a zero sum (the force loop and the loads
+// A candidate that is no contact holds zero springs and a zero sum (the force loop and the loads
 // rely on it: they skip such candidates).
 #include <cstddef>
 #include <cstdint>
@@ -27,6 +27,7 @@ struct ContactList {
   std::vector<Index> key_i, key_j;
   std::vector<int> slot_i, slot_j;  // storage slots (slot_j = wall index for walls); -1 until found
   std::vector<Vec3> spring;         // tangential spring force on i [N] (history)
+  std::vector<Vec3> rolling;        // rolling spring couple on i [N m] (history of epsd2; zero for other laws)
   std::vector<std::uint8_t> bonded; // bond flag Φ (history), SPEC §6
   std::vector<std::uint8_t> active; // touching or bonded this step: a contact, not just a candidate
   std::vector<Vec3> normal;         // unit normal from i to j (or to the wall) this step

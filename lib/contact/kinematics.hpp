@@ -14,11 +14,13 @@ struct ContactKinematics {
   Vec3 w_arm;      // a_j w_j + a_i w_i (wall: a_i w_i), for eq. 2.12
   double m_eff;    // m_i m_j / (m_i + m_j), wall: m_i
   double r_eff;    // R* = a_i a_j / (a_i + a_j), wall: a_i (a law that needs it: hertz)
+  Vec3 w_rel = Vec3::Zero();  // w_i - w_j (wall: w_i - the wall's spin), set where a rolling law reads it
 };
 
 struct ContactForce {
   Vec3 on_i;        // total force on i [N]; j receives the opposite (eq. 2.31-2.32)
   Vec3 tangential;  // tangential part of on_i, for the torques of eq. 2.33-2.34
+  Vec3 couple = Vec3::Zero();  // rolling resistance: a torque on i [N m], on j the opposite (eq. R1)
 };
 
 // The law, written once over a lane type L (simd/lanes.hpp): one contact (L = double, from the
@@ -31,10 +33,11 @@ struct LaneKinematics {
   lanes::Triple<L> v_rel, w_arm;
   L m_eff;
   L r_eff;
+  lanes::Triple<L> w_rel{};  // as ContactKinematics
 };
 template <class L>
 struct LaneForce {
-  lanes::Triple<L> on_i, tangential;  // as ContactForce
+  lanes::Triple<L> on_i, tangential, couple;  // as ContactForce
 };
 
 }  // namespace dem

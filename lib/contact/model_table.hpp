@@ -4,7 +4,7 @@
 // is its place in its list (checkpoints store it); its keyword is its own. The parser, the materials (constants, eq. 2.48), the
 // energy check, the servo and the force loop ask these tables, never a switch of their own.
 // A new model: its type in its kind's file, one entry in its list below (a normal law also one
-// value of NormalLaw or TangentialLaw, contact/pair_params.hpp, in the same place), its tests,
+// value of NormalLaw, TangentialLaw or RollingLaw, contact/pair_params.hpp, in the same place), its tests,
 // its keys in docs/scene.md.
 #include <algorithm>
 #include <optional>
@@ -17,6 +17,7 @@
 #include "contact/normal_laws.hpp"
 #include "contact/pair_params.hpp"
 #include "contact/properties.hpp"
+#include "contact/rolling.hpp"
 #include "contact/tangential.hpp"
 
 namespace dem {
@@ -65,8 +66,12 @@ using NormalLaws = ModelTable<CundallNormal, LiuNormal, MendesNormal, HertzNorma
 // Tangential laws, in the order of TangentialLaw's codes.
 using TangentialLaws = ModelTable<CoulombSpring, MindlinSpring>;
 
+// Rolling resistance laws, in the order of RollingLaw's codes.
+using RollingLaws = ModelTable<NoRolling, ConstantTorque, ElasticPlasticRolling>;
+
 constexpr int kNormalLaws = NormalLaws::size;  // codes 0 .. kNormalLaws - 1
 constexpr int kTangentialLaws = TangentialLaws::size;
+constexpr int kRollingLaws = RollingLaws::size;
 
 // f(Law{}) for the law of code `law`: f is called with an object of the law's type.
 template <class F>
@@ -100,6 +105,17 @@ inline std::optional<TangentialLaw> tangential_law_named(std::string_view keywor
 }
 inline std::vector<std::string> tangential_law_names() { return TangentialLaws::names(); }
 
+template <class F>
+decltype(auto) with_rolling_law(RollingLaw law, F&& f) {
+  return RollingLaws::with(static_cast<int>(law), f);
+}
+inline std::string_view rolling_law_name(RollingLaw law) { return RollingLaws::name(static_cast<int>(law)); }
+inline std::optional<RollingLaw> rolling_law_named(std::string_view keyword) {
+  const std::optional<int> c = RollingLaws::named(keyword);
+  return c ? std::optional<RollingLaw>(static_cast<RollingLaw>(*c)) : std::nullopt;
+}
+inline std::vector<std::string> rolling_law_names() { return RollingLaws::names(); }
+
 // The damping of each contact's pair, per contact (MixedNormal's).
 struct MixedDamping {
   static double coefficient(const PairParams& p, const LaneKinematics<double>& c) {
@@ -125,12 +141,25 @@ struct MixedTangential : TangentialSpring {
                     double dashpot, double dt, lanes::Triple<double>& spring, lanes::Triple<double>& ft) {
     with_tangential_law(p, [&](auto law) { decltype(law)::force(p, c, vt, fn, bonded, dashpot, dt, spring, ft); });
   }
+  static double stiffness_at(const PairParams& p, const LaneKinematics<double>& c) {
+    return with_tangential_law(p, [&](auto law) { return decltype(law)::stiffness_at(p, c); });
+  }
+};
+
+// A scene whose material pairs use different rolling laws: the law of each contact's pair.
+struct MixedRolling {
+  static constexpr bool has_history = true;  // some pair's may
+  static lanes::Triple<double> couple(const PairParams& p, const LaneKinematics<double>& c, double f_el, double k_t, double dt,
+                                      lanes::Triple<double>& history) {
+    return with_rolling_law(p.rolling, [&](auto law) { return decltype(law)::couple(p, c, f_el, k_t, dt, history); });
+  }
 };
 
 // The sub-models a pair (or a whole scene) uses: what the force loop is compiled for.
 struct ModelChoice {
   NormalLaw normal = NormalLaw::Cundall;
   TangentialLaw tangential = TangentialLaw::Coulomb;
+  RollingLaw rolling = RollingLaw::None;
   bool operator==(const ModelChoice&) const = default;
 };
 
@@ -140,17 +169,18 @@ decltype(auto) with_damping(const PairParams& p, F&& f) {
   return with_normal_law(p.law, [&](auto law) { return f(typename decltype(law)::Damping{}); });
 }
 
-// The scene keys a material with normal law `law` and tangential law `tangential` reads: its normal
-// law's, then its damping's and its tangential law's, each once, in that order (a key's
-// default_key comes before it).
-inline std::vector<PropertyKey> property_keys(NormalLaw law, TangentialLaw tangential) {
+// The scene keys a material with sub-models `m` reads: its normal law's, then its damping's, its
+// tangential law's and its rolling law's, each once, in that order (a key's default_key comes
+// before it).
+inline std::vector<PropertyKey> property_keys(ModelChoice m) {
   std::vector<PropertyKey> keys;
   auto add = [&](const auto& list) {
     for (const PropertyKey& k : list)
       if (std::none_of(keys.begin(), keys.end(), [&](const PropertyKey& o) { return o.keyword == k.keyword; })) keys.push_back(k);
   };
-  with_normal_law(law, [&](auto m) { add(decltype(m)::keys), add(decltype(m)::Damping::keys); });
-  with_tangential_law(tangential, [&](auto m) { add(decltype(m)::keys); });
+  with_normal_law(m.normal, [&](auto law) { add(decltype(law)::keys), add(decltype(law)::Damping::keys); });
+  with_tangential_law(m.tangential, [&](auto law) { add(decltype(law)::keys); });
+  with_rolling_law(m.rolling, [&](auto law) { add(decltype(law)::keys); });
   return keys;
 }
 // Every key of every model, each once: what a checkpoint stores per material.
@@ -158,8 +188,9 @@ inline std::vector<PropertyKey> all_property_keys() {
   std::vector<PropertyKey> keys;
   for (int c = 0; c < kNormalLaws; ++c)
     for (int t = 0; t < kTangentialLaws; ++t)
-      for (const PropertyKey& k : property_keys(static_cast<NormalLaw>(c), static_cast<TangentialLaw>(t)))
-        if (std::none_of(keys.begin(), keys.end(), [&](const PropertyKey& o) { return o.keyword == k.keyword; })) keys.push_back(k);
+      for (int r = 0; r < kRollingLaws; ++r)
+        for (const PropertyKey& k : property_keys({static_cast<NormalLaw>(c), static_cast<TangentialLaw>(t), static_cast<RollingLaw>(r)}))
+          if (std::none_of(keys.begin(), keys.end(), [&](const PropertyKey& o) { return o.keyword == k.keyword; })) keys.push_back(k);
   return keys;
 }
 // The laws that read a key, e.g. "law = \"liu\", law = \"mendes\"" (for messages).
@@ -179,6 +210,10 @@ inline std::string laws_reading(std::string_view keyword) {
     with_tangential_law(static_cast<TangentialLaw>(t), [&](auto m) {
       if (reads(decltype(m)::keys)) add("tangential", decltype(m)::keyword);
     });
+  for (int r = 0; r < kRollingLaws; ++r)
+    with_rolling_law(static_cast<RollingLaw>(r), [&](auto m) {
+      if (reads(decltype(m)::keys)) add("rolling", decltype(m)::keyword);
+    });
   return list;
 }
 
@@ -188,8 +223,10 @@ inline PairParams derive_pair_params(ModelChoice models, const PairProperties& q
   PairParams p;
   p.law = models.normal;
   p.tangential = models.tangential;
+  p.rolling = models.rolling;
   with_normal_law(p.law, [&](auto m) { m.derive(p, q); });
   with_tangential_law(p, [&](auto m) { m.derive(p, q); });
+  with_rolling_law(p.rolling, [&](auto m) { m.derive(p, q); });
   with_damping(p, [&](auto m) { m.derive(p, q); });
   return p;
 }

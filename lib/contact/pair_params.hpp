@@ -14,10 +14,16 @@ enum class NormalLaw { Cundall, Liu, Mendes, Hertz };
 // contact radius (docs/contact-laws.md eq. H8).
 enum class TangentialLaw { Coulomb, Mindlin };
 
+// Rolling resistance of a material pair, a code per entry of RollingLaws (model_table.hpp): none,
+// `cdt` (a constant couple) or `epsd2` (an elastic-plastic rotational spring), docs/contact-laws.md
+// eq. R1-R4.
+enum class RollingLaw { None, ConstantTorque, ElasticPlastic };
+
 // Contact constants of one material pair, derived once (STYLE: a law's constants are precomputed).
 struct PairParams {
   NormalLaw law = NormalLaw::Cundall;
   TangentialLaw tangential = TangentialLaw::Coulomb;
+  RollingLaw rolling = RollingLaw::None;
   double kn = 0, kt = 0;
   double mu = 0;        // tan(friction angle)
   double gamma_n = 0;   // damping ratio from restitution, eq. 2.29
@@ -36,6 +42,7 @@ struct PairParams {
   double hertz_damping = 0;     // 2 zeta sqrt(3/2 hertz_modulus) (hertz, eq. H6)
   double mindlin_modulus = 0;   // 8 G* [Pa] (mindlin, eq. H8-H9)
   double mindlin_damping = 0;   // 2 zeta_t sqrt(2/7 mindlin_modulus) (mindlin, eq. H10)
+  double rolling_friction = 0;  // mu_r (cdt, epsd2: eq. R2-R4)
 };
 
 // The sizes a stiffness bound (eq. 2.48) may depend on: a law whose slope grows with the overlap

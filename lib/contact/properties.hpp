@@ -41,6 +41,7 @@ struct ContactProperties {
   double epsilon = 1e-4;        // mendes law shape parameter, (0, 1)
   double young_modulus = 0;     // E [Pa] (hertz)
   double poisson_ratio = 0;     // nu (hertz)
+  double rolling_friction = 0;  // mu_r (cdt, epsd2)
   bool no_viscous_attraction = false;  // clip the total normal force of unbonded contacts at zero
 };
 

@@ -9,7 +9,8 @@
 // `derive(p, properties)`; `in_tangent_plane(spring, n)` (its history turned into the current
 // tangent plane); `dashpot(p, c)` (its coefficient c_t for contact kinematics c);
 // `force(p, c, vt, fn, bonded, dashpot, dt, spring, ft)` (over a lane type);
-// `stored_energy(p, spring, u, r_eff)`; `stiffness(p, scale)` (for eq. 2.48).
+// `stored_energy(p, spring, u, r_eff)`; `stiffness(p, scale)` (for eq. 2.48); `stiffness_at(p, c)` (its
+// stiffness at one contact, which a rolling law reads).
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -103,11 +104,16 @@ struct CoulombSpring : TangentialSpring {
   [[gnu::always_inline]] static L dashpot(const P& p, const LaneKinematics<L>& c) {
     return p.damping_t * lanes::root(c.m_eff);
   }
+  // The spring's stiffness at this contact [N/m].
+  template <class P, class L>
+  [[gnu::always_inline]] static L stiffness_at(const P& p, const LaneKinematics<L>& /*c*/) {
+    return L(p.kt);
+  }
   template <class P, class L, class M>
-  [[gnu::always_inline]] static void force(const P& p, const LaneKinematics<L>& /*c*/, const lanes::Triple<L>& vt, const L& fn,
+  [[gnu::always_inline]] static void force(const P& p, const LaneKinematics<L>& c, const lanes::Triple<L>& vt, const L& fn,
                                            const M& bonded, const L& dashpot, double dt, lanes::Triple<L>& spring,
                                            lanes::Triple<L>& ft) {
-    step(p, L(p.kt), vt, fn, bonded, dashpot, dt, spring, ft);
+    step(p, stiffness_at(p, c), vt, fn, bonded, dashpot, dt, spring, ft);
   }
   // The energy held in the spring: |s|^2 / (2 kt) [J].
   static double stored_energy(const PairParams& p, const Vec3& spring, double /*u*/, double /*r_eff*/) {
@@ -148,6 +154,11 @@ struct MindlinSpring : TangentialSpring {
   [[gnu::always_inline]] static L dashpot(const P& p, const LaneKinematics<L>& c) {
     return p.mindlin_damping * lanes::root(c.m_eff * contact_radius(c));
   }
+  // k_t = 8 G* a (eq. H8) [N/m].
+  template <class P, class L>
+  [[gnu::always_inline]] static L stiffness_at(const P& p, const LaneKinematics<L>& c) {
+    return p.mindlin_modulus * contact_radius(c);
+  }
   template <class P, class L, class M>
   [[gnu::always_inline]] static void force(const P& p, const LaneKinematics<L>& c, const lanes::Triple<L>& vt, const L& fn,
                                            const M& bonded, const L& dashpot, double dt, lanes::Triple<L>& spring,
@@ -158,7 +169,7 @@ struct MindlinSpring : TangentialSpring {
     const L u = only_where(less(zero, c.overlap), c.overlap);
     const L u_old = u + dot(c.v_rel, c.n) * L(dt);
     spring = select(less(u, u_old), spring * root(u / u_old), spring);
-    step(p, p.mindlin_modulus * root(c.r_eff * u), vt, fn, bonded, dashpot, dt, spring, ft);  // eq. H8
+    step(p, stiffness_at(p, c), vt, fn, bonded, dashpot, dt, spring, ft);
   }
   // |s|^2 / (2 k_t(u)) [J]: the energy of the spring at the current stiffness.
   static double stored_energy(const PairParams& p, const Vec3& spring, double u, double r_eff) {

@@ -29,12 +29,13 @@ struct CandidateArrays {
   std::uint8_t* active;
   std::uint8_t* bonded;
   Vec3* spring;
+  Vec3* rolling;
   ContactSum* sum;
 
   CandidateArrays(const Particles& p, ContactList& pc)
       : count(static_cast<long>(pc.size())), x(p.x.data()), radius(p.radius.data()), slot_i(pc.slot_i.data()),
         slot_j(pc.slot_j.data()), active(pc.active.data()), bonded(pc.bonded.data()), spring(pc.spring.data()),
-        sum(pc.sum.data()) {}
+        rolling(pc.rolling.data()), sum(pc.sum.data()) {}
 };
 
 // The contacts found in a chunk: candidate positions and separations x_j - x_i (nearest image),
@@ -48,7 +49,7 @@ struct FoundInChunk {
   double* dz;
 };
 
-// Candidates [first, last): sets active (touching or bonded), clears the spring and sum of a contact
+// Candidates [first, last): sets active (touching or bonded), clears the springs and sum of a contact
 // lost, and stores each contact's position and separation in `found` in candidate order. Returns
 // how many. (No candidate joins two fixed particles: the neighbour list leaves those out and is
 // rebuilt when a fixed flag changes, which drops their history, bonds included.) `simd`: the
@@ -75,7 +76,7 @@ inline int find_contacts_plain(const CandidateArrays& a, const PeriodicBox& box,
     m += now;
     // A candidate that was no contact already holds zeros (ContactList): in a dense bed most
     // candidates are such, and rewriting their 72 bytes every step cost memory bandwidth.
-    if (!now && was) a.spring[k] = Vec3::Zero(), a.sum[k] = ContactSum();
+    if (!now && was) a.spring[k] = Vec3::Zero(), a.rolling[k] = Vec3::Zero(), a.sum[k] = ContactSum();
   }
   return m;
 }

@@ -77,18 +77,21 @@ double pair_chunk(const ChunkInput& chunk, long first, long last) {
     c.w_arm = a.radius[j] * a.w[j] + a.radius[i] * a.w[i];
     c.m_eff = effective_mass(a.mass[i], a.mass[j], Fixed && a.fixed[i], Fixed && a.fixed[j]);
     c.r_eff = a.radius[i] * a.radius[j] / (a.radius[i] + a.radius[j]);  // eq. H3
+    if constexpr (Model::has_rolling) c.w_rel = a.w[i] - a.w[j];
   }
   for (int e = 0; e < m; ++e) {
     const long k = contact[e];
     a.spring[k] = Model::in_tangent_plane(a.spring[k], kin[e].n);
+    if constexpr (Model::RollingModel::has_history) a.rolling[k] = Model::in_tangent_plane(a.rolling[k], kin[e].n);
   }
   for (int e = 0; e < m; ++e) {
     const long k = contact[e];
     const int i = a.slot_i[k], j = a.slot_j[k];
     const ContactKinematics& c = kin[e];
     const PairParams& params = materials.pair(a.material[i], a.material[j]);
-    const ContactForce f = Model::evaluate_in_plane(params, c, dt, a.spring[k], a.bonded[k]);
+    const ContactForce f = Model::evaluate_in_plane(params, c, dt, a.spring[k], a.bonded[k], a.rolling[k]);
     keep_pair_result(a, k, c.n, f.on_i, c.n.cross(f.tangential));
+    if constexpr (Model::has_rolling) a.rolling[k] = f.couple;  // summed with the loads (finish_block)
     worst = std::max(worst, relative_overlap_if_larger(c.overlap, std::min(a.radius[i], a.radius[j]), worst));
   }
   return worst;
@@ -145,7 +148,10 @@ double wall_run(const ForceLoopInput& in, ContactList& wc, ForceBlocks& out, lon
       const double cosine = to_wall[o].normalized().dot(to_wall[e].normalized());
       if (cosine > best) best = cosine, from = o;
     }
-    if (from >= 0) wc.spring[k] = wc.spring[first + from], wc.spring[first + from] = Vec3::Zero();
+    if (from >= 0) {
+      wc.spring[k] = wc.spring[first + from], wc.spring[first + from] = Vec3::Zero();
+      wc.rolling[k] = wc.rolling[first + from], wc.rolling[first + from] = Vec3::Zero();
+    }
   }
   double worst = 0;
   for (int e = 0; e < n; ++e) {
@@ -153,6 +159,7 @@ double wall_run(const ForceLoopInput& in, ContactList& wc, ForceBlocks& out, lon
     if (!take[e]) {
       wc.active[k] = 0;
       wc.spring[k] = Vec3::Zero();
+      wc.rolling[k] = Vec3::Zero();
       wc.sum[k] = ContactSum();
       continue;
     }
@@ -167,14 +174,17 @@ double wall_run(const ForceLoopInput& in, ContactList& wc, ForceBlocks& out, lon
     c.w_arm = p.radius[i] * p.w[i];
     c.m_eff = p.mass[i];
     c.r_eff = p.radius[i];  // a wall: infinite radius, eq. H3
-    const ContactForce f = Model::evaluate(in.materials.pair(p.material[i], in.walls[wc.slot_j[k]].material), c,
-                                                        in.dt, wc.spring[k], wc.bonded[k]);
+    if constexpr (Model::has_rolling) c.w_rel = p.w[i] - g.spin;
+    const ContactForce f = Model::evaluate(in.materials.pair(p.material[i], in.walls[wc.slot_j[k]].material), c, in.dt,
+                                           wc.spring[k], wc.bonded[k], wc.rolling[k]);
+    if constexpr (Model::has_rolling) wc.rolling[k] = f.couple;
     const Vec3 torque_per_radius = c.n.cross(f.tangential);
     wc.active[k] = 1;
     wc.normal[k] = c.n;
     wc.sum[k] = {f.on_i, torque_per_radius};
     out.force[i].v += f.on_i;  // eq. 2.31
     out.torque[i].v += p.radius[i] * torque_per_radius;  // eq. 2.33
+    if constexpr (Model::has_rolling) out.torque[i].v += f.couple;  // eq. R1
     worst = std::max(worst, relative_overlap_if_larger(c.overlap, p.radius[i], worst));
   }
   return worst;
@@ -220,6 +230,20 @@ DEM_AVX2 void sum_pair_contacts_avx2(const ForceBlocks& out, const ContactSum* s
   }
 }
 #endif
+// The rolling couples of particles [lo, hi) added to their torques, each particle's in the order of
+// its contacts' keys: M on i, -M on j (eq. R1). After the other contact loads, so a scene
+// without rolling resistance sums exactly as before.
+void add_pair_couples(const ForceBlocks& out, const Vec3* couple, long lo, long hi) {
+  for (long i = lo; i < hi; ++i) {
+    Vec3 torque = Vec3::Zero();
+    for (int e = out.by_key_start[i]; e < out.by_key_start[i + 1]; ++e) {
+      const unsigned code = static_cast<unsigned>(out.by_key[e]);
+      torque += (code & 1) ? Vec3(-couple[code >> 1]) : couple[code >> 1];
+    }
+    out.torque[i].v += torque;
+  }
+}
+
 void sum_pair_contacts(const ForceBlocks& out, const ContactSum* sum, const double* radius, long lo, long hi) {
 #ifdef DEM_SIMD_LOOPS
   if (out.simd) return sum_pair_contacts_avx2(out, sum, radius, lo, hi);
@@ -236,6 +260,7 @@ double finish_block(const ForceLoopInput& in, const ContactList& pc, ContactList
   const Particles& p = in.particles;
   const long lo = b * out.block, hi = std::min(static_cast<long>(p.size()), lo + out.block);
   sum_pair_contacts(out, pc.sum.data(), p.radius.data(), lo, hi);
+  if constexpr (Model::has_rolling) add_pair_couples(out, pc.rolling.data(), lo, hi);
   double worst = 0;
   for (int q = in.wall_block_first[b]; q < in.wall_block_first[b + 1]; ++q)
     worst = std::max(worst, wall_run<Model>(in, wc, out, in.wall_run_order[q], scratch));
@@ -362,16 +387,20 @@ ForceVariant choose_force_variant(const MaterialTable& materials, bool any_bonds
 
 std::string variant_name(ForceVariant v) {
   if (!v) return "mixed";
-  const std::string normal(normal_law_name(v->normal));
-  return v->tangential == TangentialLaw::Coulomb ? normal : normal + " + " + std::string(tangential_law_name(v->tangential));
+  std::string name(normal_law_name(v->normal));
+  if (v->tangential != TangentialLaw::Coulomb) name += " + " + std::string(tangential_law_name(v->tangential));
+  if (v->rolling != RollingLaw::None) name += " + " + std::string(rolling_law_name(v->rolling));
+  return name;
 }
 
 double compute_contact_forces(const ForceLoopInput& in, ForceVariant variant, ContactList& pairs, ContactList& walls,
                               ForceBlocks& loads) {
-  if (!variant) return all_forces<ContactModel<MixedNormal, MixedTangential>>(in, pairs, walls, loads);
+  if (!variant) return all_forces<ContactModel<MixedNormal, MixedTangential, MixedRolling>>(in, pairs, walls, loads);
   return with_normal_law(variant->normal, [&](auto normal) {
     return with_tangential_law(variant->tangential, [&](auto tangential) {
-      return all_forces<ContactModel<decltype(normal), decltype(tangential)>>(in, pairs, walls, loads);
+      return with_rolling_law(variant->rolling, [&](auto rolling) {
+        return all_forces<ContactModel<decltype(normal), decltype(tangential), decltype(rolling)>>(in, pairs, walls, loads);
+      });
     });
   });
 }

@@ -395,18 +395,18 @@ struct ParticleArrays {
 struct MaterialArrays {
   std::vector<std::string> name;
   std::vector<double> density;
-  std::vector<int> law, tangential, mixing;
+  std::vector<int> law, tangential, rolling, mixing;
   std::vector<std::vector<double>> number;  // per key of all_property_keys() (flags: empty)
   std::vector<std::vector<int>> flag;       // per key (numbers: empty)
 };
 struct PairArrays {
-  std::vector<int> materials, law, tangential;
+  std::vector<int> materials, law, tangential, rolling;
   std::vector<std::vector<double>> number;  // per key; NaN: not given
   std::vector<std::vector<int>> flag;       // per key; -1: not given
 };
 struct ContactArrays {
   std::vector<std::int64_t> ids;  // (C, 2)
-  std::vector<Vec3> spring;
+  std::vector<Vec3> spring, rolling;
   std::vector<std::uint8_t> bonded;
 };
 struct WallArrays {
@@ -483,6 +483,7 @@ void material_datasets(Io& io, A& a) {
   }
   io.int32s("/materials/law", a.law, m);
   if (io.has("/materials/tangential")) io.int32s("/materials/tangential", a.tangential, m);  // schema 4 on
+  if (io.has("/materials/rolling")) io.int32s("/materials/rolling", a.rolling, m);
   io.int32s("/materials/mixing", a.mixing, 4);
 }
 
@@ -494,6 +495,7 @@ void pair_datasets(Io& io, A& a) {
   const long rows = static_cast<long>(a.materials.size() / 2);
   io.int32s("/pairs/law", a.law, rows);
   if (io.has("/pairs/tangential")) io.int32s("/pairs/tangential", a.tangential, rows);  // schema 4 on
+  if (io.has("/pairs/rolling")) io.int32s("/pairs/rolling", a.rolling, rows);
   const std::vector<PropertyKey> keys = all_property_keys();
   for (std::size_t k = 0; k < keys.size(); ++k) {
     const std::string name = "/pairs/" + std::string(keys[k].keyword);
@@ -507,6 +509,8 @@ void contact_datasets(Io& io, const std::string& kind, A& a) {
   io.int64s(("/contacts/" + kind + "_ids").c_str(), a.ids, -1, 2);
   const long rows = static_cast<long>(a.ids.size() / 2);
   io.vec3s(("/contacts/" + kind + "_spring").c_str(), a.spring, "N", rows);
+  const std::string rolling = "/contacts/" + kind + "_rolling";
+  if (io.has(rolling.c_str())) io.vec3s(rolling.c_str(), a.rolling, "N m", rows);  // schema 4 on
   io.uint8s(("/contacts/" + kind + "_bonded").c_str(), a.bonded, rows);
 }
 
@@ -540,6 +544,7 @@ MaterialArrays material_arrays(const MaterialTable& table) {
   for (const Material& m : table.materials()) {
     a.name.push_back(m.name), a.density.push_back(m.density), a.law.push_back(static_cast<int>(m.law));
     a.tangential.push_back(static_cast<int>(m.tangential));
+    a.rolling.push_back(static_cast<int>(m.rolling));
     for (std::size_t k = 0; k < keys.size(); ++k)
       keys[k].flag ? a.flag[k].push_back(m.*keys[k].flag) : a.number[k].push_back(m.*keys[k].number);
   }
@@ -556,6 +561,7 @@ PairArrays pair_arrays(const std::vector<PairOverride>& pairs) {
   for (const PairOverride& o : pairs) {
     a.materials.push_back(o.a), a.materials.push_back(o.b), a.law.push_back(o.law ? static_cast<int>(*o.law) : -1);
     a.tangential.push_back(o.tangential ? static_cast<int>(*o.tangential) : -1);
+    a.rolling.push_back(o.rolling ? static_cast<int>(*o.rolling) : -1);
     for (std::size_t k = 0; k < keys.size(); ++k) {
       const bool given = o.gives(keys[k].keyword);
       if (keys[k].flag) a.flag[k].push_back(given ? int{o.values.*keys[k].flag} : -1);
@@ -570,6 +576,7 @@ ContactArrays contact_arrays(const ContactList& c) {
   a.ids.resize(2 * c.size());
   for (std::size_t i = 0; i < c.size(); ++i) a.ids[2 * i] = c.key_i[i], a.ids[2 * i + 1] = c.key_j[i];
   a.spring = c.spring;
+  a.rolling = c.rolling;
   a.bonded = c.bonded;
   return a;
 }
@@ -714,8 +721,10 @@ void read_checkpoint(const std::string& path, Simulation& sim, CheckpointMeta& m
   materials.number.resize(keys.size()), materials.flag.resize(keys.size());
   material_datasets(io, materials);
   const long nm = static_cast<long>(materials.name.size());
-  if (r.schema() >= 4 && materials.tangential.empty() && nm > 0) throw IoError(path + ": /materials/tangential is missing (damaged file)");
-  if (materials.tangential.empty()) materials.tangential.assign(nm, static_cast<int>(TangentialLaw::Coulomb));  // before schema 4
+  for (const auto& [codes, name] : {std::pair{&materials.tangential, "tangential"}, std::pair{&materials.rolling, "rolling"}}) {
+    if (r.schema() >= 4 && static_cast<long>(codes->size()) != nm) throw IoError(path + ": /materials/" + name + " is missing (damaged file)");
+    if (codes->empty()) codes->assign(nm, 0);  // before schema 4: coulomb, no rolling resistance
+  }
   const auto flag_of = [&](int v, const std::string& name) {
     if (v != 0 && v != 1) throw IoError(path + ": " + name + " holds neither 0 nor 1 (damaged file)");
     return v == 1;
@@ -729,6 +738,9 @@ void read_checkpoint(const std::string& path, Simulation& sim, CheckpointMeta& m
     if (materials.tangential[m] < 0 || materials.tangential[m] >= kTangentialLaws)
       throw IoError(path + ": /materials/tangential holds an unknown law (damaged file)");
     mats[m].tangential = static_cast<TangentialLaw>(materials.tangential[m]);
+    if (materials.rolling[m] < 0 || materials.rolling[m] >= kRollingLaws)
+      throw IoError(path + ": /materials/rolling holds an unknown law (damaged file)");
+    mats[m].rolling = static_cast<RollingLaw>(materials.rolling[m]);
     for (std::size_t k = 0; k < keys.size(); ++k)
       keys[k].flag ? void(mats[m].*keys[k].flag = flag_of(materials.flag[k][m], "/materials/" + std::string(keys[k].keyword)))
                    : void(mats[m].*keys[k].number = materials.number[k][m]);
@@ -741,8 +753,10 @@ void read_checkpoint(const std::string& path, Simulation& sim, CheckpointMeta& m
     pairs.number.resize(keys.size()), pairs.flag.resize(keys.size());
     pair_datasets(io, pairs);
     overrides.resize(pairs.law.size());
-    if (r.schema() >= 4 && pairs.tangential.size() != overrides.size()) throw IoError(path + ": /pairs/tangential is missing (damaged file)");
-    if (pairs.tangential.empty()) pairs.tangential.assign(overrides.size(), -1);  // before schema 4
+    for (const auto& [codes, name] : {std::pair{&pairs.tangential, "tangential"}, std::pair{&pairs.rolling, "rolling"}}) {
+      if (r.schema() >= 4 && codes->size() != overrides.size()) throw IoError(path + ": /pairs/" + name + " is missing (damaged file)");
+      if (codes->empty()) codes->assign(overrides.size(), -1);  // before schema 4: the materials' own
+    }
     for (std::size_t e = 0; e < overrides.size(); ++e) {
       PairOverride& o = overrides[e];
       o.a = pairs.materials[2 * e], o.b = pairs.materials[2 * e + 1];
@@ -753,6 +767,8 @@ void read_checkpoint(const std::string& path, Simulation& sim, CheckpointMeta& m
       if (pairs.tangential[e] < -1 || pairs.tangential[e] >= kTangentialLaws)
         throw IoError(path + ": /pairs/tangential holds an unknown law (damaged file)");
       if (pairs.tangential[e] >= 0) o.tangential = static_cast<TangentialLaw>(pairs.tangential[e]);
+      if (pairs.rolling[e] < -1 || pairs.rolling[e] >= kRollingLaws) throw IoError(path + ": /pairs/rolling holds an unknown law (damaged file)");
+      if (pairs.rolling[e] >= 0) o.rolling = static_cast<RollingLaw>(pairs.rolling[e]);
       for (std::size_t k = 0; k < keys.size(); ++k) {
         if (keys[k].flag && pairs.flag[k][e] != -1) o.set(keys[k].keyword, flag_of(pairs.flag[k][e], "/pairs/" + std::string(keys[k].keyword)));
         if (!keys[k].flag && !std::isnan(pairs.number[k][e])) o.set(keys[k].keyword, pairs.number[k][e]);
@@ -772,11 +788,14 @@ void read_checkpoint(const std::string& path, Simulation& sim, CheckpointMeta& m
     contact_datasets(io, kind, a);
     ContactList c;
     const long nc = static_cast<long>(a.spring.size());
+    if (r.schema() >= 4 && static_cast<long>(a.rolling.size()) != nc)
+      throw IoError(path + ": /contacts/" + kind + "_rolling is missing (damaged file)");
     c.resize(nc);
     for (long i = 0; i < nc; ++i) {
       c.key_i[i] = a.ids[2 * i];
       c.key_j[i] = a.ids[2 * i + 1];
       c.spring[i] = a.spring[i];
+      if (!a.rolling.empty()) c.rolling[i] = a.rolling[i];
       c.bonded[i] = a.bonded[i];
       // History is carried over by a merge of key-sorted lists, as the writer stores them.
       if (i > 0 && !(c.key_i[i - 1] < c.key_i[i] || (c.key_i[i - 1] == c.key_i[i] && c.key_j[i - 1] < c.key_j[i])))

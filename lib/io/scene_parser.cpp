@@ -287,9 +287,13 @@ const std::string kCoulomb = "coulomb";
 TangentialLaw read_tangential(TableReader& r, const std::string* def) {
   return *tangential_law_named(r.choice("tangential", tangential_law_names(), def));
 }
+const std::string kNone = "none";
+RollingLaw read_rolling(TableReader& r, const std::string* def) {
+  return *rolling_law_named(r.choice("rolling", rolling_law_names(), def));
+}
 std::string models_text(ModelChoice m) {
   return "law = \"" + std::string(normal_law_name(m.normal)) + "\", tangential = \"" + std::string(tangential_law_name(m.tangential)) +
-         "\"";
+         "\", rolling = \"" + std::string(rolling_law_name(m.rolling)) + "\"";
 }
 
 // One contact property by its key (contact/properties.hpp), stored in `into`; returns it.
@@ -305,7 +309,7 @@ bool reads_key(const std::vector<PropertyKey>& keys, std::string_view keyword) {
 
 // A key that only other laws' models read is an error that says whose it is.
 void refuse_keys_of_other_laws(TableReader& r, ModelChoice models) {
-  const std::vector<PropertyKey> own = property_keys(models.normal, models.tangential);
+  const std::vector<PropertyKey> own = property_keys(models);
   for (const PropertyKey& k : all_property_keys()) {
     const std::string key(k.keyword);
     if (reads_key(own, k.keyword) || !r.has(key)) continue;
@@ -334,17 +338,18 @@ void read_pairs(TableReader& top, Scene& sc) {
       if ((x.a == o.a && x.b == o.b) || (x.a == o.b && x.b == o.a)) r.fail_at(&mn, "materials", "a [[pair]] for these materials is already given");
     if (r.has("law")) o.law = read_law(r, nullptr);
     if (r.has("tangential")) o.tangential = read_tangential(r, nullptr);
-    const ModelChoice models{o.law ? *o.law : sc.materials[o.a].law, o.tangential ? *o.tangential : sc.materials[o.a].tangential};
+    if (r.has("rolling")) o.rolling = read_rolling(r, nullptr);
+    const ModelChoice models = o.models(sc.materials[o.a]);
     refuse_keys_of_other_laws(r, models);
-    const std::vector<PropertyKey> keys = property_keys(models.normal, models.tangential);
+    const std::vector<PropertyKey> keys = property_keys(models);
     // A law that reads a property of each material (not mixed) joins only materials that give it.
     for (const PropertyKey& k : keys)
       for (const int side : {o.a, o.b}) {
         const Material& m = sc.materials[side];
-        if (!k.mixing && !k.flag && !reads_key(property_keys(m.law, m.tangential), k.keyword))
+        if (!k.mixing && !k.flag && !reads_key(property_keys(m.models()), k.keyword))
           r.fail_at(&mn, "materials", "the pair's laws (" + models_text(models) + ") read " + std::string(k.keyword) +
-                                          " of each material, and material \"" + m.name + "\" (" +
-                                          models_text({m.law, m.tangential}) + ") has none");
+                                          " of each material, and material \"" + m.name + "\" (" + models_text(m.models()) +
+                                          ") has none");
       }
     for (const PropertyKey& k : keys) {
       if (!r.has(std::string(k.keyword))) continue;
@@ -372,6 +377,8 @@ void read_pairs(TableReader& top, Scene& sc) {
       check(mx.law == my.law, "normal", "law", [](const PairOverride& o) { return o.law.has_value(); }, normal_law_names());
       check(mx.tangential == my.tangential, "tangential", "tangential", [](const PairOverride& o) { return o.tangential.has_value(); },
             tangential_law_names());
+      check(mx.rolling == my.rolling, "rolling", "rolling", [](const PairOverride& o) { return o.rolling.has_value(); },
+            rolling_law_names());
     }
 }
 
@@ -389,9 +396,10 @@ void read_materials(TableReader& top, Scene& sc) {
     if (find_material(sc.materials, m.name) >= 0) r.fail("name", "duplicate material name");
     m.law = read_law(r, &kCundall);
     m.tangential = read_tangential(r, &kCoulomb);
+    m.rolling = read_rolling(r, &kNone);
     m.density = r.number("density", 0, kInf, "kg/m^3", true);
-    refuse_keys_of_other_laws(r, {m.law, m.tangential});
-    const std::vector<PropertyKey> keys = property_keys(m.law, m.tangential);
+    refuse_keys_of_other_laws(r, m.models());
+    const std::vector<PropertyKey> keys = property_keys(m.models());
     for (const PropertyKey& k : keys) {
       const std::string key(k.keyword);
       if (r.has(key)) {

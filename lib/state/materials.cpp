@@ -44,8 +44,7 @@ MaterialTable::MaterialTable(std::vector<Material> materials, MixingRules rules,
         else if (k.mixing) q.mixed.*k.number = mix(rules_.*k.mixing, A.*k.number, B.*k.number);
       }
       // Unlike laws need an explicit [[pair]] (the parser checks); like laws carry over.
-      const ModelChoice models{(o && o->law) ? *o->law : A.law, (o && o->tangential) ? *o->tangential : A.tangential};
-      pairs_[a * n + b] = derive_pair_params(models, q);
+      pairs_[a * n + b] = derive_pair_params(o ? o->models(A) : A.models(), q);
     }
 }
 
@@ -59,7 +58,10 @@ double MaterialTable::max_stiffness(const ContactScale& scale) const {
   double k = 0;
   for (const PairParams& p : pairs_) {
     k = std::max({k, with_normal_law(p.law, [&](auto law) { return law.stiffness(p, scale); }),
-                  with_tangential_law(p, [&](auto law) { return law.stiffness(p, scale); })});
+                  with_tangential_law(p, [&](auto law) { return law.stiffness(p, scale); }),
+                  with_rolling_law(p.rolling, [&](auto law) {
+                    return law.stiffness(with_tangential_law(p, [&](auto t) { return t.stiffness(p, scale); }));
+                  })});
   }
   return k;
 }
@@ -72,7 +74,7 @@ double MaterialTable::max_break_separation() const {
 
 std::optional<ModelChoice> MaterialTable::common_models(bool bonds) const {
   if (pairs_.empty()) return ModelChoice{};
-  const auto models = [&](const PairParams& p) { return ModelChoice{bonds ? p.law : law_without_bonds(p.law), p.tangential}; };
+  const auto models = [&](const PairParams& p) { return ModelChoice{bonds ? p.law : law_without_bonds(p.law), p.tangential, p.rolling}; };
   for (const PairParams& p : pairs_)
     if (!(models(p) == models(pairs_[0]))) return std::nullopt;
   return models(pairs_[0]);

@@ -11,13 +11,15 @@
 
 namespace dem {
 
-// A material: its name and density, its normal and tangential laws, and its contact properties
-// (each read by the sub-model that owns its key, contact/model_table.hpp).
+// A material: its name and density, its contact laws, and its contact properties (each read by
+// the sub-model that owns its key, contact/model_table.hpp).
 struct Material : ContactProperties {
   std::string name;
   double density = 2500;  // [kg/m^3]
   NormalLaw law = NormalLaw::Cundall;
   TangentialLaw tangential = TangentialLaw::Coulomb;
+  RollingLaw rolling = RollingLaw::None;
+  ModelChoice models() const { return {law, tangential, rolling}; }
 };
 
 // Explicit properties for one material pair, overriding the mixing rules ([[pair]] in a scene).
@@ -25,6 +27,11 @@ struct PairOverride {
   int a = 0, b = 0;
   std::optional<NormalLaw> law;
   std::optional<TangentialLaw> tangential;
+  std::optional<RollingLaw> rolling;
+  // The pair's laws: its own where given, else material `a`'s (unlike laws need a [[pair]]).
+  ModelChoice models(const Material& a) const {
+    return {law.value_or(a.law), tangential.value_or(a.tangential), rolling.value_or(a.rolling)};
+  }
   ContactProperties values;         // those named in `given`
   std::vector<std::string> given;   // keywords of the properties given
   bool gives(std::string_view keyword) const;
