@@ -8,8 +8,10 @@
 
 #include "control/servo.hpp"
 #include "core/error.hpp"
+#include "core/version.hpp"
 #include "generation/fill.hpp"
 #include "io/checkpoint.hpp"
+#include "io/file_seal.hpp"
 #include "io/scene_parser.hpp"
 #include "io/vtk_output.hpp"
 #include "run/frames.hpp"
@@ -76,6 +78,48 @@ std::vector<ServoGroup> stage_servos(const Simulation& sim, const Scene& scene, 
   return groups;
 }
 
+// A periodic checkpoint continues exactly the run that wrote it: the same toolkit version, --in,
+// scene text, walls, files the scene reads and stage. Anything else would give another run's result
+// under this run's name, so it is refused (InputError) with what differs and how to start over.
+void check_resumable(const StageOptions& o, const Scene& scene, const StageSpec& stage, const std::string& restart_file,
+                     const CheckpointMeta& meta) {
+  const std::string start_over = " (to start the stage over from --in, delete " + restart_file + " or run without --restart)";
+  auto refuse = [&](const std::string& what) { throw InputError("--restart: the periodic checkpoint " + restart_file + " " + what + start_over); };
+  if (meta.writer_version != kVersion)
+    refuse("was written by run-stage " + (meta.writer_version.empty() ? std::string("of unknown version") : meta.writer_version) +
+           ", this is " + kVersion + "; an exact restart needs the same version");
+  if (!meta.inputs_recorded)
+    refuse("does not record the --in checkpoint and the files it was started from (written before run-stage recorded them), so it "
+           "cannot be checked against this run");
+  if (meta.run.stage != stage.name) refuse("belongs to stage \"" + meta.run.stage + "\", not \"" + stage.name + "\"");
+  std::string in_seal;
+  try {
+    in_seal = seal_fingerprint(o.in);
+  } catch (const IoError& e) {
+    refuse("was started from --in " + meta.run.input_path + " (" + meta.run.input_seal + "), and --in " + o.in +
+           " cannot be read to compare: " + e.what());
+  }
+  if (in_seal != meta.run.input_seal)
+    refuse("was started from a different input: --in " + meta.run.input_path + " (" + meta.run.input_seal + ") then, --in " + o.in + " (" +
+           in_seal + ") now");
+  if (meta.scene_text != scene.text)
+    refuse("was written with another scene: the scene file " + o.scene + " differs from the one the periodic checkpoint holds");
+  if (!meta.scene_walls.empty() && meta.scene_walls != scene.walls_fingerprint())
+    refuse("was written with other walls: the walls " + o.scene + " builds differ (was a wall's STL file edited?)");
+  // Entries are "fnv1a64=<hex> size=N PATH": compare the contents, not the path (the same file may be reached by another path).
+  auto contents = [](const std::string& entry) { return entry.substr(0, entry.find(' ', entry.find(' ') + 1)); };
+  auto path_of = [](const std::string& entry) { return entry.substr(entry.find(' ', entry.find(' ') + 1) + 1); };
+  const std::vector<std::string>& then = meta.scene_files;
+  const std::vector<std::string>& now = scene.files;
+  for (std::size_t k = 0; k < std::max(then.size(), now.size()); ++k) {
+    if (k >= then.size()) refuse("was written when the scene read no file " + path_of(now[k]) + " (" + contents(now[k]) + ")");
+    if (k >= now.size()) refuse("was written when the scene also read " + path_of(then[k]) + " (" + contents(then[k]) + "), which it no longer reads");
+    if (contents(then[k]) != contents(now[k]))
+      refuse("was written when the file " + path_of(then[k]) + " the scene reads held other bytes (" + contents(then[k]) + " then, " +
+             path_of(now[k]) + ": " + contents(now[k]) + " now)");
+  }
+}
+
 }  // namespace
 
 void run_stage(const StageOptions& o) {
@@ -92,15 +136,7 @@ void run_stage(const StageOptions& o) {
   CheckpointMeta meta;
   if (o.restart && std::filesystem::exists(restart_file)) {
     read_checkpoint(restart_file, sim, meta);
-    if (meta.scene_text != scene.text)
-      throw InputError(o.scene + ": the scene file differs from the one the periodic checkpoint " + restart_file +
-                       " was written with; an exact restart needs the same scene (delete the periodic checkpoint to start over)");
-    if (!meta.scene_walls.empty() && meta.scene_walls != walls_fingerprint)
-      throw InputError(o.scene + ": the walls this scene builds differ from those the periodic checkpoint " + restart_file +
-                       " was written with (was a wall's STL file edited?); an exact restart needs the same walls (delete the "
-                       "periodic checkpoint to start over)");
-    if (meta.run.stage != stage->name)
-      throw InputError(restart_file + ": the periodic checkpoint belongs to stage \"" + meta.run.stage + "\", not \"" + stage->name + "\"");
+    check_resumable(o, scene, *stage, restart_file, meta);
     // The same scene text gives the same contact constants, [[pair]] entries included.
     sim.materials = MaterialTable(scene.materials, scene.mixing, scene.pairs);
     if (!o.quiet) std::cerr << "run-stage: resuming stage " << stage->name << " at step " << sim.step << " from " << restart_file << "\n";
@@ -109,14 +145,17 @@ void run_stage(const StageOptions& o) {
     read_checkpoint(o.in, sim, meta);
     adopt_scene(sim, scene);
     apply_actions(sim, *stage);
+    check_inside_walls(sim, scene, o.in);
     sim.dt = choose_time_step(sim, scene.simulation);
     start_motions(sim, *stage);
-    meta.run = RunInfo{stage->name, sim.step, static_cast<std::int64_t>(std::ceil(stage->duration / sim.dt - 1e-9)), sim.time, {}, {}};
+    meta.run = RunInfo{stage->name, sim.step, static_cast<std::int64_t>(std::ceil(stage->duration / sim.dt - 1e-9)), sim.time, {}, {},
+                       o.in, seal_fingerprint(o.in)};
   }
   meta.writer = "run-stage";
   meta.scene_path = scene.path;
   meta.scene_text = scene.text;
   meta.scene_walls = walls_fingerprint;
+  meta.scene_files = scene.files;
   RunInfo& run = meta.run;
 
   std::vector<ServoGroup> servos = stage_servos(sim, scene, *stage);
