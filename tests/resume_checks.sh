@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # run-stage --restart continues only the run its periodic checkpoint belongs to (same --in, scene,
 # files the scene reads, stage, version), and a checkpoint whose particles lie outside the scene's
-# closed box is refused.
+# closed box is refused. Ctrl-C (SIGINT) and SIGTERM stop run-stage after the current step with a
+# periodic checkpoint and the command that resumes it, exit 130; resumed, the run ends with the
+# bits of an uninterrupted one.
 set -u
 bin=$1 src=$2 py=$3
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
@@ -67,4 +69,41 @@ check "box of the same name moved: warned" 0 "warning: .*a.h5: 86 of 86 particle
   "$bin/run-stage" --scene "$tmp/moved.toml" --stage shake --in "$tmp/a.h5" --out "$tmp/m.h5" --quiet
 check "particles inside: no warning" 0 "removed 34 particles" -- "$bin/run-stage" --scene "$src/data/small.toml" --stage shake --in "$tmp/a.h5" --out "$tmp/s.h5" --quiet
 grep -q warning "$tmp/out" && { echo "FAIL a warning for particles inside the box"; cat "$tmp/out"; fail=1; }
+
+# Ctrl-C: a run with no periodic checkpoint due (every 100,000 steps) stops after the current step,
+# writes one and prints the command to resume. (A script's background jobs ignore SIGINT unless job
+# control is on: set -m. Where this shell was started with SIGINT ignored, SIGTERM stands in.)
+set -m
+sig=INT
+[ $(( 0x$(awk '/^SigIgn/ { print $2 }' /proc/$$/status) & 2 )) -ne 0 ] && { sig=TERM; echo "note: SIGINT is ignored here; SIGTERM instead"; }
+stage_args=(--scene "$src/data/small.toml" --stage long --in "$tmp/a.h5")
+"$bin/run-stage" "${stage_args[@]}" --out "$tmp/full.h5" --vtk "$tmp/vtk_full" --wall-forces "$tmp/full.csv" --quiet || exit 1
+"$bin/run-stage" "${stage_args[@]}" --out "$tmp/int.h5" --vtk "$tmp/vtk_int" --wall-forces "$tmp/int.csv" --checkpoint-every 100000 --quiet > "$tmp/int.out" 2>&1 &
+pid=$!
+until [ -e "$tmp/vtk_int/long.partial/long_particles.pvd" ]; do kill -0 $pid 2> /dev/null || break; sleep 0.05; done
+sleep 0.5; kill -$sig $pid; wait $pid; rc=$?
+set +m
+if [ $rc -ne 130 ] || ! grep -q "run-stage: interrupted by SIG$sig.* after step [0-9]* ([0-9]* of [0-9]* steps of stage long, t = .* s); the periodic checkpoint .*int.restart.h5 holds step [0-9]*. To resume, run:" "$tmp/int.out"; then
+  echo "FAIL SIG$sig: exit $rc (want 130):"; cat "$tmp/int.out"; fail=1
+else echo "ok   SIG$sig stops after a step with a periodic checkpoint, exit 130"; fi
+[ -e "$tmp/int.restart.h5" ] && [ ! -e "$tmp/int.h5" ] && [ ! -e "$tmp/vtk_int/long_particles.pvd" ] || { echo "FAIL after SIG$sig: want the periodic checkpoint, no output, no frames in place"; ls -R "$tmp"; fail=1; }
+resume_cmd=$(grep -A1 "To resume, run:" "$tmp/int.out" | tail -1)
+case "$resume_cmd" in *" --restart") ;; *) echo "FAIL the resume command lacks --restart: $resume_cmd"; fail=1 ;; esac
+bash -c "$resume_cmd" > "$tmp/resumed.out" 2>&1 || { echo "FAIL the printed command did not resume:"; cat "$tmp/resumed.out"; fail=1; }
+"$py" "$src/compare_checkpoints.py" "$tmp/full.h5" "$tmp/int.h5" > /dev/null || { echo "FAIL resumed after SIG$sig: differs from the uninterrupted run"; fail=1; }
+diff -r "$tmp/vtk_full" "$tmp/vtk_int" > /dev/null || { echo "FAIL VTK frames differ after SIG$sig"; fail=1; }
+cmp -s "$tmp/full.csv" "$tmp/int.csv" || { echo "FAIL wall force CSV differs after SIG$sig"; fail=1; }
+[ -e "$tmp/int.restart.h5" ] && { echo "FAIL periodic checkpoint left after the resumed run"; fail=1; }
+[ $fail -eq 0 ] && echo "ok   resumed after SIG$sig: the same bits, frames and CSV as the uninterrupted run"
+
+# SIGTERM with periodic checkpoints off: nothing to resume, nothing left behind, exit 130.
+"$bin/run-stage" "${stage_args[@]}" --out "$tmp/term.h5" --vtk "$tmp/vtk_term" --wall-forces "$tmp/term.csv" --checkpoint-minutes 0 --quiet > "$tmp/term.out" 2>&1 &
+pid=$!
+until [ -e "$tmp/vtk_term/long.partial/long_particles.pvd" ]; do kill -0 $pid 2> /dev/null || break; sleep 0.05; done
+sleep 0.3; kill -TERM $pid; wait $pid; rc=$?
+if [ $rc -ne 130 ] || ! grep -q "interrupted by SIGTERM .* no periodic checkpoint (--checkpoint-minutes 0 and no --checkpoint-every), nothing written" "$tmp/term.out"; then
+  echo "FAIL SIGTERM without periodic checkpoints: exit $rc (want 130):"; cat "$tmp/term.out"; fail=1
+else echo "ok   SIGTERM without periodic checkpoints: exit 130, says nothing was written"; fi
+left=$(find "$tmp/vtk_term" -type f 2> /dev/null; ls "$tmp"/term*.partial "$tmp"/term.restart.h5 "$tmp"/term.h5 2> /dev/null)
+[ -z "$left" ] || { echo "FAIL left behind after SIGTERM: $left"; fail=1; }
 exit $fail

@@ -13,6 +13,7 @@
 #include "generation/fill.hpp"
 #include "io/checkpoint.hpp"
 #include "io/file_seal.hpp"
+#include "io/output_paths.hpp"
 #include "io/scene_parser.hpp"
 #include "run/progress.hpp"
 #include "run/settle.hpp"
@@ -89,6 +90,7 @@ void settle_and_write(const char* tool, Simulation& sim, const SettleSpec& spec,
 }  // namespace
 
 void gen_primary(const GenerateOptions& o) {
+  check_output_file(o.out, "--out");  // before the run, not after it
   const auto t0 = Clock::now();
   const Scene scene = read_scene_file(o.scene);
   if (!scene.generation) throw InputError(o.scene + ": gen-primary needs a [generation] table");
@@ -99,6 +101,7 @@ void gen_primary(const GenerateOptions& o) {
 }
 
 void copy_settle(const GenerateOptions& o) {
+  check_output_file(o.out, "--out");  // before the run, not after it
   const auto t0 = Clock::now();
   const Scene scene = read_scene_file(o.scene);
   if (!scene.copy) throw InputError(o.scene + ": copy-settle needs a [copy] table");
@@ -121,6 +124,7 @@ void copy_settle(const GenerateOptions& o) {
 }
 
 void compact(const GenerateOptions& o) {
+  check_output_file(o.out, "--out");  // before the run, not after it
   const auto t0 = Clock::now();
   const Scene scene = read_scene_file(o.scene);
   if (!scene.compact) throw InputError(o.scene + ": compact needs a [compact] table");
