@@ -104,16 +104,17 @@ std::string outside_closed_boxes(const std::vector<Wall>& walls, double t, const
   for (const auto& [box, faces] : boxes) {
     if (std::find(faces.begin(), faces.end(), -1) != faces.end()) continue;  // open: particles may have left through the opening
     std::array<std::vector<Vec3>, 6> quads;
-    Vec3 centre = Vec3::Zero();
+    std::array<Vec3, 6> middle;  // of each face
     for (int f = 0; f < 6; ++f) {
       quads[f] = walls[faces[f]].vertices_at(t);
-      for (const Vec3& v : quads[f]) centre += v / (6.0 * quads[f].size());
+      middle[f] = Vec3::Zero();
+      for (const Vec3& v : quads[f]) middle[f] += v / static_cast<double>(quads[f].size());
     }
     for (int f = 0; f < 6; ++f) {
       if (periodic.axis[f / 2]) continue;  // positions are wrapped into the period along it
       const std::vector<Vec3>& q = quads[f];
       Vec3 n = (q[1] - q[0]).cross(q[2] - q[0]).normalized();
-      if (n.dot(centre - q[0]) < 0) n = -n;  // into the box
+      if (n.dot(middle[f ^ 1] - q[0]) < 0) n = -n;  // into the box: towards the opposite face (a lid pressed down sits below the box's middle)
       std::size_t outside = 0, first = 0;
       for (std::size_t i = 0; i < p.size(); ++i)
         if (-n.dot(p.x[i] - q[0]) > p.radius[i] && outside++ == 0) first = i;
