@@ -22,6 +22,8 @@ def main(path, expect_writer):
         # path: (dtype kind, shape, units or None)
         spec = {
             "scene/text": ("S", (1,), None), "scene/path": ("S", (1,), None), "scene/walls": ("S", (1,), None),
+            "scene/files": ("S", (f["scene/files"].shape[0],), None),
+            "run/input_path": ("S", (1,), None), "run/input_seal": ("S", (1,), None),
             "state/time": ("f", (1,), "s"), "state/step": ("i", (1,), None), "state/dt": ("f", (1,), "s"),
             "state/gravity": ("f", (1, 3), "m/s^2"), "state/alpha_r": ("f", (1,), "1/s"),
             "state/alpha_theta": ("f", (1,), "1/s"), "state/periodic": ("i", (3,), None),
@@ -85,6 +87,15 @@ def main(path, expect_writer):
         assert f["contacts/pair_bonded"].dtype == np.uint8
         for name, units in (("run/frame_times", b"s"), ("run/servo_integral", b"m/s")):
             assert f[name].dtype.kind == "f" and f[name].ndim == 1 and f[name].attrs["units"] == units, name
+
+        # The input it started from: none for gen-primary, else the --in's seal.
+        seal = f["run/input_seal"][0].decode()
+        if expect_writer == "gen-primary":
+            assert seal == "" and f["run/input_path"][0].decode() == "", seal
+        else:
+            assert seal.startswith("crc32=") and " size=" in seal and f["run/input_path"][0].decode(), seal
+        for entry in f["scene/files"][:]:
+            assert entry.decode().startswith("fnv1a64="), entry
 
         # Contents consistent with the scene the file carries.
         scene = f["scene/text"][0].decode()

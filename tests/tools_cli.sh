@@ -88,5 +88,37 @@ ls "$tmp"/*.tmp 2> /dev/null && { echo "FAIL temporary left behind"; fail=1; }
 sed 's/^name = "glass"/name = "sand"/; s/glass = 1.0/sand = 1.0/' "$data/small.toml" > "$tmp/other.toml"
 check "material missing from scene" 3 'material "glass", which this scene does not define' -- "$bin/run-stage" --scene "$tmp/other.toml" --stage shake --in "$tmp/a.h5" --out "$tmp/b.h5"
 [ -e "$tmp/b.h5" ] && { echo "FAIL output written after failed runs"; fail=1; }
+
+# Unwritable outputs fail at once (exit 4, the option and the path named), before any step, and
+# write nothing. (A path under a regular file: permissions do not stop root.)
+echo "a file" > "$tmp/file.txt"
+bad=$tmp/file.txt/sub
+check "gen-primary unwritable --out" 4 "gen-primary: error: --out $bad/x.h5: cannot write there: $tmp/file.txt is a file, not a folder" -- "$bin/gen-primary" --scene "$data/small.toml" --out "$bad/x.h5"
+check "copy-settle unwritable --out" 4 "--out $bad/x.h5: cannot write there" -- "$bin/copy-settle" --scene "$data/tiled.toml" --in "$tmp/a.h5" --out "$bad/x.h5"
+check "run-stage --out is a folder" 4 "--out $tmp: cannot write there: it is a folder" -- "$bin/run-stage" --scene "$data/small.toml" --stage long --in "$tmp/a.h5" --out "$tmp"
+for opt in --wall-forces --track; do
+  extra=(); [ $opt = --track ] && extra=(--track-ids 0)
+  check "run-stage unwritable $opt" 4 "$opt $bad/t.csv: cannot write there" -- "$bin/run-stage" --scene "$data/small.toml" --stage long --in "$tmp/a.h5" --out "$tmp/w.h5" $opt "$bad/t.csv" "${extra[@]}"
+done
+start=$(date +%s%N)
+check "run-stage unwritable --vtk" 4 "run-stage: error: --vtk $bad: cannot write there: $tmp/file.txt is a file, not a folder" -- "$bin/run-stage" --scene "$data/small.toml" --stage long --in "$tmp/a.h5" --out "$tmp/w.h5" --vtk "$bad"
+ms=$(( ($(date +%s%N) - start) / 1000000 ))
+# (the stage takes seconds; the check comes before the checkpoint is even read)
+[ $ms -lt 1500 ] || { echo "FAIL unwritable --vtk reported after $ms ms, not at once"; fail=1; }
+[ -e "$tmp/w.h5" ] || [ -e "$tmp/w.restart.h5" ] || [ -e "$tmp/file.txt.partial" ] && { echo "FAIL output written after an unwritable --vtk"; fail=1; }
+check "post-macro unwritable --grid" 4 "--grid $bad/g.vti: cannot write there" -- "$bin/post-macro" --in "$tmp/a.h5" --grid "$bad/g.vti" --cell 0.005 --width 0.004 --vtk "$tmp/p.vtu"
+[ -e "$tmp/p.vtu" ] && { echo "FAIL post-macro wrote --vtk before failing on --grid"; fail=1; }
+# A --vtk folder holding a longer earlier series of the stage: its stale frames go, other files stay.
+mkdir -p "$tmp/vtk/shake"
+for k in 0 1 2 3 4 5 6 7 8 9; do echo old > "$tmp/vtk/shake/particles_00000$k.vtu"; echo old > "$tmp/vtk/shake/walls_00000$k.vtp"; done
+echo mine > "$tmp/vtk/shake/notes.txt"; echo mine > "$tmp/vtk/other_particles.pvd"; echo mine > "$tmp/vtk/shake/particles_final.vtu"
+"$bin/run-stage" --scene "$data/small.toml" --stage shake --in "$tmp/a.h5" --out "$tmp/v.h5" --vtk "$tmp/vtk" --quiet 2> /dev/null
+got=$(cd "$tmp/vtk" && find . -type f | sort | tr '\n' ' ')
+want="./other_particles.pvd ./shake/notes.txt ./shake/particles_000000.vtu ./shake/particles_000001.vtu ./shake/particles_000002.vtu ./shake/particles_000003.vtu ./shake/particles_final.vtu ./shake/walls_000000.vtp ./shake/walls_000001.vtp ./shake/walls_000002.vtp ./shake/walls_000003.vtp ./shake_particles.pvd ./shake_walls.pvd "
+[ "$got" = "$want" ] && ! grep -q old "$tmp/vtk/shake/particles_000003.vtu" && echo "ok   stale frames of a longer run removed, other files kept" || { echo "FAIL stale frames: got $got"; fail=1; }
+# A run that fails writes no frames (here it blows up at its first bounce).
+"$bin/run-stage" --scene "$data/energy_drop.toml" --stage drop --in "$tmp/drop0.h5" --out "$tmp/drop4.h5" --vtk "$tmp/vtk_fail" --quiet > /dev/null 2>&1
+left=$(find "$tmp/vtk_fail" -type f 2> /dev/null)
+[ -z "$left" ] && echo "ok   a failed run leaves no frames" || { echo "FAIL a failed run left frames: $left"; fail=1; }
 check "threads option" 0 "removed" -- "$bin/run-stage" --scene "$data/small.toml" --stage shake --in "$tmp/a.h5" --out "$tmp/b.h5" --threads 1 --quiet
 exit $fail

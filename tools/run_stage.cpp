@@ -14,6 +14,9 @@ int main(int argc, char** argv) {
   app.add_option("--vtk", o.vtk_dir, "directory for VTK frames and .pvd series");
   app.add_option("--checkpoint-every", o.checkpoint_every, "steps between periodic checkpoints (OUT with .restart.h5)")
       ->check(CLI::NonNegativeNumber);
+  app.add_option("--checkpoint-minutes", o.checkpoint_minutes,
+                 "wall-clock minutes between periodic checkpoints (default 30; 0 = none); Ctrl-C writes one too unless both are off")
+      ->check(CLI::NonNegativeNumber);
   app.add_flag("--restart", o.restart, "resume from the periodic checkpoint if one exists");
   app.add_option("--wall-forces", o.wall_forces, "per-wall force and torque time series (CSV)");
   app.add_option("--wall-forces-every", o.wall_forces_every, "steps between rows of --wall-forces (default 100)")
@@ -29,5 +32,6 @@ int main(int argc, char** argv) {
       ->needs(track);
   app.add_flag("--quiet", o.quiet, "no progress output");
   dem::add_common_options(app, threads);
+  o.command = dem::shell_command(argc, argv);
   return dem::run_tool(app, argc, argv, threads, [&] { dem::run_stage(o); });
 }

@@ -5,6 +5,7 @@
 #include <csignal>
 #include <cstdio>
 #include <functional>
+#include <string>
 #include <omp.h>
 
 #include "core/error.hpp"
@@ -25,6 +26,20 @@ void add_generate_options(CLI::App& app, Options& o, bool needs_input) {
   if (needs_input) app.add_option("--in", o.in, "input checkpoint (HDF5)")->required()->check(CLI::ExistingFile);
   app.add_option("--out", o.out, "output checkpoint (HDF5), written atomically")->required();
   app.add_flag("--quiet", o.quiet, "no progress output");
+}
+
+// The command line as a shell would take it back (arguments quoted where needed), for messages
+// that tell the user what to run next.
+inline std::string shell_command(int argc, char** argv) {
+  std::string line;
+  for (int k = 0; k < argc; ++k) {
+    const std::string a = argv[k];
+    const bool plain = !a.empty() && a.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789_-./=:,+@%") == std::string::npos;
+    std::string q = "'";
+    for (char c : a) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    line += (k ? " " : "") + (plain ? a : q + "'");
+  }
+  return line;
 }
 
 inline int run_tool(CLI::App& app, int argc, char** argv, int& threads, const std::function<void()>& body) {
@@ -53,6 +68,9 @@ inline int run_tool(CLI::App& app, int argc, char** argv, int& threads, const st
   } catch (const IoError& e) {
     std::fprintf(stderr, "%s: error: %s\n", name.c_str(), e.what());
     return kExitIo;
+  } catch (const Interrupted& e) {
+    std::fprintf(stderr, "%s: %s\n", name.c_str(), e.what());
+    return kExitInterrupted;
   } catch (const PhysicsError& e) {
     std::fprintf(stderr, "%s: error: unstable simulation: %s\n", name.c_str(), e.what());
     return kExitPhysics;

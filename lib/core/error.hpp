@@ -22,7 +22,21 @@ struct PhysicsError : Error {
   using Error::Error;
 };
 
-// Exit codes shared by all tools.
-enum ExitCode : int { kExitOk = 0, kExitUsage = 2, kExitInput = 3, kExitIo = 4, kExitPhysics = 5, kExitInternal = 70 };
+// The run was stopped by a signal (Ctrl-C, SIGTERM) between steps; the message says what was saved
+// and how to resume.
+struct Interrupted : Error {
+  using Error::Error;
+};
+
+// Exit codes shared by all tools (130: as a shell reports a process stopped by Ctrl-C).
+enum ExitCode : int {
+  kExitOk = 0,
+  kExitUsage = 2,
+  kExitInput = 3,
+  kExitIo = 4,
+  kExitPhysics = 5,
+  kExitInternal = 70,
+  kExitInterrupted = 130
+};
 
 }  // namespace dem

@@ -423,6 +423,7 @@ void scene_datasets(Io& io, Meta& meta) {
   io.text("/scene/text", meta.scene_text);
   io.text("/scene/path", meta.scene_path);
   if (io.has("/scene/walls")) io.text("/scene/walls", meta.scene_walls);  // added within schema 2
+  if (io.has("/scene/files")) io.strings("/scene/files", meta.scene_files, -1);  // schema 4 on
 }
 
 template <class Io, class Sim, class S>
@@ -450,6 +451,10 @@ void run_datasets(Io& io, Run& run) {
   io.scalar("/run/stage_start_time", run.stage_start_time, "s");
   io.doubles("/run/frame_times", run.frame_times, "s");
   if (io.has("/run/servo_integral")) io.doubles("/run/servo_integral", run.servo_integral, "m/s");  // added within schema 2
+  if (io.has("/run/input_seal")) {  // schema 4 on
+    io.text("/run/input_path", run.input_path);
+    io.text("/run/input_seal", run.input_seal);
+  }
 }
 
 template <class Io, class P, class A>
@@ -686,6 +691,8 @@ void read_checkpoint(const std::string& path, Simulation& sim, CheckpointMeta& m
   meta.writer_version = r.string_attribute("writer_version");
   Load io(r);
   meta.scene_walls.clear();
+  meta.scene_files.clear();
+  meta.inputs_recorded = r.has("/run/input_seal") && r.has("/scene/files");
   scene_datasets(io, meta);
   StateArrays state;
   state_datasets(io, sim, state);

@@ -24,6 +24,8 @@ struct RunInfo {
   double stage_start_time = 0;       // [s]
   std::vector<double> frame_times;   // times of the VTK frames written so far in this stage [s]
   std::vector<double> servo_integral;  // per [[stage.servo]]: its integral action [m/s] (ServoGroup)
+  std::string input_path;  // the --in this run started from ("" for gen-primary)
+  std::string input_seal;  // its seal_fingerprint (io/file_seal.hpp), "" for gen-primary
 };
 
 struct CheckpointMeta {
@@ -31,6 +33,10 @@ struct CheckpointMeta {
   std::string writer_version;  // filled on read; kVersion on write
   std::string scene_path, scene_text;
   std::string scene_walls;  // Scene::walls_fingerprint(); empty when read from a file written before it existed
+  std::vector<std::string> scene_files;  // Scene::files
+  // On read: the file holds /run/input_seal and /scene/files (files written before them do not:
+  // their input is unknown).
+  bool inputs_recorded = false;
   RunInfo run;
 };
 

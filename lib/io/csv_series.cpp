@@ -59,4 +59,11 @@ void CsvSeries::finish() {
   if (bad || std::rename(partial_.c_str(), path_.c_str()) != 0) fail(path_, "finish");
 }
 
+void CsvSeries::discard() {
+  if (!file_) return;
+  std::fclose(file_);
+  file_ = nullptr;
+  std::remove(partial_.c_str());
+}
+
 }  // namespace dem

@@ -23,6 +23,7 @@ class CsvSeries {
   std::FILE* file() const { return file_; }  // for fprintf of rows
   void flush();                              // after a batch of rows; throws IoError on failure
   void finish();                             // closes the file and renames it into place
+  void discard();                            // closes and removes the partial file (a failed run)
 
  private:
   [[noreturn]] void fail(const std::string& path, const std::string& doing) const;

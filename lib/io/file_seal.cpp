@@ -3,6 +3,8 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -74,6 +76,39 @@ void check_seal(const std::string& path) {
   if (actual != crc)
     throw IoError(path + ": damaged checkpoint: the CRC-32 of its contents does not match its seal (a changed byte; "
                   "checkpoints are written only by the dem tools, and a file edited by another program is refused)");
+}
+
+std::string seal_fingerprint(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw IoError(path + ": cannot open for reading: " + std::strerror(errno));
+  std::vector<char> head(kSealBytes + 1, '\0');
+  in.read(head.data(), kSealBytes);
+  unsigned long crc = 0;
+  unsigned long long size = 0;
+  if (std::memcmp(head.data(), kMagic, sizeof kMagic - 1) != 0 ||
+      std::sscanf(head.data() + sizeof kMagic - 1, "%8lx size=%llu", &crc, &size) != 2)
+    throw IoError(path + ": not a dem checkpoint (no dem seal at the start of the file; foreign, empty or damaged file)");
+  char out[64];
+  std::snprintf(out, sizeof out, "crc32=%08lx size=%llu", crc, size);
+  return out;
+}
+
+std::string file_fingerprint(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw IoError(path + ": cannot open for reading: " + std::strerror(errno));
+  std::uint64_t h = 14695981039346656037ull;  // FNV-1a, 64 bits (as Scene::walls_fingerprint)
+  unsigned long long bytes = 0;
+  std::vector<char> buf(1 << 16);
+  while (in) {
+    in.read(buf.data(), static_cast<std::streamsize>(buf.size()));
+    const std::streamsize n = in.gcount();
+    for (std::streamsize k = 0; k < n; ++k) h = (h ^ static_cast<unsigned char>(buf[k])) * 1099511628211ull;
+    bytes += static_cast<unsigned long long>(n);
+  }
+  if (in.bad()) throw IoError(path + ": reading failed");
+  char out[64];
+  std::snprintf(out, sizeof out, "fnv1a64=%016llx size=%llu", static_cast<unsigned long long>(h), bytes);
+  return out;
 }
 
 }  // namespace dem

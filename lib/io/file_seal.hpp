@@ -19,4 +19,14 @@ void seal_image(std::vector<char>& image);
 // Throws IoError naming `path` unless the file carries an intact seal.
 void check_seal(const std::string& path);
 
+// The identity of a sealed checkpoint, "crc32=XXXXXXXX size=N", from its seal line alone (512
+// bytes read): what a periodic checkpoint records of the --in it was started from. Throws IoError
+// naming `path` when it cannot be read or holds no seal.
+std::string seal_fingerprint(const std::string& path);
+
+// The identity of any file, "fnv1a64=<16 hex digits> size=N" (FNV-1a over every byte): what a
+// checkpoint records of the files a scene reads (STL walls, mesh regions). Throws IoError naming
+// `path` when it cannot be read.
+std::string file_fingerprint(const std::string& path);
+
 }  // namespace dem

@@ -15,6 +15,7 @@
 
 #include "contact/model_table.hpp"
 #include "core/error.hpp"
+#include "io/file_seal.hpp"
 #include "io/stl.hpp"
 #include "walls/primitives.hpp"
 
@@ -544,6 +545,16 @@ std::vector<Polygon> read_helix(TableReader& r) {
   return helical_ramp_mesh(base, axis, inner, radius, pitch, turns, spt, bands);
 }
 
+// The files read while parsing one scene (parse_scene sets it): STL files are reached from deep
+// inside nested readers (walls, regions of cuts and actions) that do not carry the Scene.
+thread_local std::vector<std::string>* files_read = nullptr;
+
+void note_file_read(const std::string& path) {
+  if (!files_read) return;
+  const std::string entry = file_fingerprint(path) + " " + path;  // IoError: reported at the `file` key
+  if (std::find(files_read->begin(), files_read->end(), entry) == files_read->end()) files_read->push_back(entry);
+}
+
 // STL triangles, transformed x -> R·(scale·x) + translate. The file is found relative to the
 // scene file's directory; a file that cannot be read is reported at the `file` key.
 std::vector<Polygon> read_stl_wall(TableReader& r) {
@@ -566,6 +577,7 @@ std::vector<Polygon> read_stl_wall(TableReader& r) {
   std::vector<Triangle> tris;
   try {
     tris = read_stl(path.string());
+    note_file_read(path.string());
   } catch (const IoError& e) {
     r.fail_at(&fn, "file", e.what());
   }
@@ -972,6 +984,10 @@ Scene parse_scene(const std::string& text, const std::string& path) {
   Scene sc;
   sc.path = path;
   sc.text = text;
+  files_read = &sc.files;
+  struct Reset {
+    ~Reset() { files_read = nullptr; }
+  } reset;
   TableReader top(root, path, "");
   read_simulation(top, sc);
   read_materials(top, sc);

@@ -12,6 +12,8 @@
 #include "core/error.hpp"
 #include "generation/fill.hpp"
 #include "io/checkpoint.hpp"
+#include "io/file_seal.hpp"
+#include "io/output_paths.hpp"
 #include "io/scene_parser.hpp"
 #include "run/progress.hpp"
 #include "run/settle.hpp"
@@ -44,13 +46,15 @@ void report(const char* tool, const Simulation& sim, const SettleResult& s, doub
               s.ke_ratio, porosity(sim), coordination_number(sim), wall_seconds);
 }
 
-CheckpointMeta meta_for(const char* tool, const Scene& scene) {
+CheckpointMeta meta_for(const char* tool, const Scene& scene, const std::string& in) {
   CheckpointMeta m;
   m.writer = tool;
   m.scene_path = scene.path;
   m.scene_text = scene.text;
   m.scene_walls = scene.walls_fingerprint();
+  m.scene_files = scene.files;
   m.run.stage = tool;
+  if (!in.empty()) m.run.input_path = in, m.run.input_seal = seal_fingerprint(in);
   return m;
 }
 
@@ -79,13 +83,14 @@ void settle_and_write(const char* tool, Simulation& sim, const SettleSpec& spec,
   sim.dt = choose_time_step(sim, scene.simulation);
   const SettleResult s = settle(sim, spec, std::string(tool) + " settle", o.quiet);
   apply_cuts(tool, sim, cuts, scene);
-  write_checkpoint(o.out, sim, meta_for(tool, scene));
+  write_checkpoint(o.out, sim, meta_for(tool, scene, o.in));
   report(tool, sim, s, seconds_since(t0));
 }
 
 }  // namespace
 
 void gen_primary(const GenerateOptions& o) {
+  check_output_file(o.out, "--out");  // before the run, not after it
   const auto t0 = Clock::now();
   const Scene scene = read_scene_file(o.scene);
   if (!scene.generation) throw InputError(o.scene + ": gen-primary needs a [generation] table");
@@ -96,6 +101,7 @@ void gen_primary(const GenerateOptions& o) {
 }
 
 void copy_settle(const GenerateOptions& o) {
+  check_output_file(o.out, "--out");  // before the run, not after it
   const auto t0 = Clock::now();
   const Scene scene = read_scene_file(o.scene);
   if (!scene.copy) throw InputError(o.scene + ": copy-settle needs a [copy] table");
@@ -118,6 +124,7 @@ void copy_settle(const GenerateOptions& o) {
 }
 
 void compact(const GenerateOptions& o) {
+  check_output_file(o.out, "--out");  // before the run, not after it
   const auto t0 = Clock::now();
   const Scene scene = read_scene_file(o.scene);
   if (!scene.compact) throw InputError(o.scene + ": compact needs a [compact] table");
@@ -192,7 +199,7 @@ void compact(const GenerateOptions& o) {
   SettleResult s;
   if (c.target_porosity > 0) s = settle(sim, c.settle, "compact relax", o.quiet);
   else s = {steps, kinetic_ratio(sim), true};
-  write_checkpoint(o.out, sim, meta_for("compact", scene));
+  write_checkpoint(o.out, sim, meta_for("compact", scene, o.in));
   if (c.target_stress > 0)
     std::printf("compact: moving-wall stress %.6g Pa (target %.6g Pa) after %lld servo steps\n", stress(), c.target_stress,
                 static_cast<long long>(steps));

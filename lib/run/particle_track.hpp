@@ -20,6 +20,7 @@ class ParticleTrack {
   // Appends one row per tracked particle if `steps_done` is a multiple of `every`, or `first`/`last`.
   void record(const Simulation& sim, std::int64_t steps_done, bool first_or_last);
   void finish() { csv_.finish(); }
+  void discard() { csv_.discard(); }  // a failed run that no restart can continue
 
  private:
   std::size_t index_of(const Particles& p, std::size_t k);  // current storage index of ids_[k]

@@ -9,6 +9,7 @@
 
 #include "core/error.hpp"
 #include "io/checkpoint.hpp"
+#include "io/output_paths.hpp"
 #include "io/post_output.hpp"
 #include "io/scene_parser.hpp"
 #include "post/coarse_grain.hpp"
@@ -107,6 +108,13 @@ void check_post_options(const PostOptions& o) {
 
 void post_macro(const PostOptions& o) {
   check_post_options(o);
+  // Every output is checked before the reading and computing, which take minutes on large files.
+  check_output_file(o.vtk, "--vtk");
+  check_output_file(o.csv, "--csv");
+  check_output_file(o.stress_csv, "--stress-csv");
+  check_output_file(o.average_csv, "--average-csv");
+  check_output_file(o.grid, "--grid");
+  check_output_file(o.chains, "--chains");
   const auto t0 = Clock::now();
   const Simulation cur = load_state(o.in);
   const Particles& p = cur.particles;

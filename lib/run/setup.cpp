@@ -1,6 +1,8 @@
 #include "run/setup.hpp"
 
 #include <algorithm>
+#include <array>
+#include <map>
 #include <string>
 #include <unordered_map>
 #include <cmath>
@@ -80,6 +82,67 @@ void adopt_scene(Simulation& sim, const Scene& scene, WallPositions positions) {
 
   sim.params = params_from(scene);
   sim.set_periodic(scene.simulation.periodic);
+}
+
+namespace {
+
+// The first closed box (all six faces NAME.xmin ... NAME.zmax among `walls`) whose faces some
+// particle lies wholly beyond (its centre more than its radius outside the face's plane): the
+// message says which box (`of` follows its name), face and particle, and how many; empty when none.
+std::string outside_closed_boxes(const std::vector<Wall>& walls, double t, const PeriodicBox& periodic, const Particles& p,
+                                 const std::string& of) {
+  static const char* const kFaces[6] = {"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"};
+  std::map<std::string, std::array<long, 6>> boxes;  // box name -> index of each face among the walls (-1: absent)
+  for (std::size_t k = 0; k < walls.size(); ++k) {
+    const std::string& name = walls[k].name;
+    const std::size_t dot = name.rfind('.');
+    if (dot == std::string::npos) continue;
+    for (int f = 0; f < 6; ++f)
+      if (name.compare(dot + 1, std::string::npos, kFaces[f]) == 0)
+        boxes.try_emplace(name.substr(0, dot), std::array<long, 6>{-1, -1, -1, -1, -1, -1}).first->second[f] = static_cast<long>(k);
+  }
+  for (const auto& [box, faces] : boxes) {
+    if (std::find(faces.begin(), faces.end(), -1) != faces.end()) continue;  // open: particles may have left through the opening
+    std::array<std::vector<Vec3>, 6> quads;
+    std::array<Vec3, 6> middle;  // of each face
+    for (int f = 0; f < 6; ++f) {
+      quads[f] = walls[faces[f]].vertices_at(t);
+      middle[f] = Vec3::Zero();
+      for (const Vec3& v : quads[f]) middle[f] += v / static_cast<double>(quads[f].size());
+    }
+    for (int f = 0; f < 6; ++f) {
+      if (periodic.axis[f / 2]) continue;  // positions are wrapped into the period along it
+      const std::vector<Vec3>& q = quads[f];
+      Vec3 n = (q[1] - q[0]).cross(q[2] - q[0]).normalized();
+      if (n.dot(middle[f ^ 1] - q[0]) < 0) n = -n;  // into the box: towards the opposite face (a lid pressed down sits below the box's middle)
+      std::size_t outside = 0, first = 0;
+      for (std::size_t i = 0; i < p.size(); ++i)
+        if (-n.dot(p.x[i] - q[0]) > p.radius[i] && outside++ == 0) first = i;
+      if (outside == 0) continue;
+      std::ostringstream m;
+      const Vec3& x = p.x[first];
+      m << outside << " of " << p.size() << " particles lie outside the closed box \"" << box << "\"" << of << ", beyond its face " << box
+        << "." << kFaces[f] << " (e.g. particle id " << p.id[first] << " at [" << x.x() << ", " << x.y() << ", " << x.z()
+        << "] m, its centre " << -n.dot(x - q[0]) << " m beyond the face)";
+      return m.str();
+    }
+  }
+  return "";
+}
+
+}  // namespace
+
+void check_inside_walls(const Simulation& sim, const Scene& scene, const std::string& checkpoint) {
+  const std::string now = outside_closed_boxes(sim.walls, sim.time, sim.periodic, sim.particles, " of " + scene.path);
+  if (!now.empty())
+    throw InputError(checkpoint + ": " + now + ": the checkpoint does not belong to this scene (another scene's checkpoint? Use the checkpoint of this "
+                     "scene's previous step, or remove those particles with a stage action \"remove\")");
+  std::vector<Wall> as_given;
+  for (const WallSpec& w : scene.walls) as_given.push_back(Wall{w.name, w.material, w.vertices, {}});
+  const std::string given = outside_closed_boxes(as_given, 0, sim.periodic, sim.particles, " as " + scene.path + " places it");
+  if (!given.empty())
+    std::cerr << "warning: " << checkpoint << ": " << given << "; the run keeps the box where the checkpoint left it, around the particles (moved by an earlier step, or "
+                 "a checkpoint of another scene whose box has the same name?)\n";
 }
 
 double choose_time_step(const Simulation& sim, const SimulationSpec& spec) {

@@ -20,6 +20,15 @@ Simulation simulation_from_scene(const Scene& scene);
 enum class WallPositions { FromCheckpoint, FromScene };
 void adopt_scene(Simulation& sim, const Scene& scene, WallPositions walls = WallPositions::FromCheckpoint);
 
+// A checkpoint from another scene shows as particles outside the scene's walls. Checked where the
+// inside is certain: closed boxes (all six faces NAME.xmin ... NAME.zmax; faces across a periodic
+// axis skipped); open boxes (particles may leave through the opening), meshes (a cylinder may be a
+// drum or a pillar) and polygons are not. A particle lies outside when its centre is more than its
+// radius beyond a face. Outside a box as the walls stand now (as adopt_scene placed them): InputError
+// naming `checkpoint`, the scene, the box, the face and a particle. Inside those but outside a box
+// as the scene gives it (the checkpoint's box of the same name was kept): a warning on stderr.
+void check_inside_walls(const Simulation& sim, const Scene& scene, const std::string& checkpoint);
+
 // Time step from eq. 2.48 (FRAC x critical) or the scene's forced value; throws InputError when a
 // given time step exceeds the critical one and is not forced.
 double choose_time_step(const Simulation& sim, const SimulationSpec& spec);

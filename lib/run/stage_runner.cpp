@@ -1,5 +1,6 @@
 #include "run/stage_runner.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -8,11 +9,15 @@
 
 #include "control/servo.hpp"
 #include "core/error.hpp"
+#include "core/version.hpp"
 #include "generation/fill.hpp"
 #include "io/checkpoint.hpp"
+#include "io/file_seal.hpp"
+#include "io/output_paths.hpp"
 #include "io/scene_parser.hpp"
 #include "io/vtk_output.hpp"
 #include "run/frames.hpp"
+#include "run/interrupt.hpp"
 #include "run/particle_track.hpp"
 #include "run/progress.hpp"
 #include "run/setup.hpp"
@@ -76,6 +81,48 @@ std::vector<ServoGroup> stage_servos(const Simulation& sim, const Scene& scene, 
   return groups;
 }
 
+// A periodic checkpoint continues exactly the run that wrote it: the same toolkit version, --in,
+// scene text, walls, files the scene reads and stage. Anything else would give another run's result
+// under this run's name, so it is refused (InputError) with what differs and how to start over.
+void check_resumable(const StageOptions& o, const Scene& scene, const StageSpec& stage, const std::string& restart_file,
+                     const CheckpointMeta& meta) {
+  const std::string start_over = " (to start the stage over from --in, delete " + restart_file + " or run without --restart)";
+  auto refuse = [&](const std::string& what) { throw InputError("--restart: the periodic checkpoint " + restart_file + " " + what + start_over); };
+  if (meta.writer_version != kVersion)
+    refuse("was written by run-stage " + (meta.writer_version.empty() ? std::string("of unknown version") : meta.writer_version) +
+           ", this is " + kVersion + "; an exact restart needs the same version");
+  if (!meta.inputs_recorded)
+    refuse("does not record the --in checkpoint and the files it was started from (written before run-stage recorded them), so it "
+           "cannot be checked against this run");
+  if (meta.run.stage != stage.name) refuse("belongs to stage \"" + meta.run.stage + "\", not \"" + stage.name + "\"");
+  std::string in_seal;
+  try {
+    in_seal = seal_fingerprint(o.in);
+  } catch (const IoError& e) {
+    refuse("was started from --in " + meta.run.input_path + " (" + meta.run.input_seal + "), and --in " + o.in +
+           " cannot be read to compare: " + e.what());
+  }
+  if (in_seal != meta.run.input_seal)
+    refuse("was started from a different input: --in " + meta.run.input_path + " (" + meta.run.input_seal + ") then, --in " + o.in + " (" +
+           in_seal + ") now");
+  if (meta.scene_text != scene.text)
+    refuse("was written with another scene: the scene file " + o.scene + " differs from the one the periodic checkpoint holds");
+  if (!meta.scene_walls.empty() && meta.scene_walls != scene.walls_fingerprint())
+    refuse("was written with other walls: the walls " + o.scene + " builds differ (was a wall's STL file edited?)");
+  // Entries are "fnv1a64=<hex> size=N PATH": compare the contents, not the path (the same file may be reached by another path).
+  auto contents = [](const std::string& entry) { return entry.substr(0, entry.find(' ', entry.find(' ') + 1)); };
+  auto path_of = [](const std::string& entry) { return entry.substr(entry.find(' ', entry.find(' ') + 1) + 1); };
+  const std::vector<std::string>& then = meta.scene_files;
+  const std::vector<std::string>& now = scene.files;
+  for (std::size_t k = 0; k < std::max(then.size(), now.size()); ++k) {
+    if (k >= then.size()) refuse("was written when the scene read no file " + path_of(now[k]) + " (" + contents(now[k]) + ")");
+    if (k >= now.size()) refuse("was written when the scene also read " + path_of(then[k]) + " (" + contents(then[k]) + "), which it no longer reads");
+    if (contents(then[k]) != contents(now[k]))
+      refuse("was written when the file " + path_of(then[k]) + " the scene reads held other bytes (" + contents(then[k]) + " then, " +
+             path_of(now[k]) + ": " + contents(now[k]) + " now)");
+  }
+}
+
 }  // namespace
 
 void run_stage(const StageOptions& o) {
@@ -87,20 +134,18 @@ void run_stage(const StageOptions& o) {
     throw InputError(o.scene + ": no [[stage]] named \"" + o.stage + "\" (defined: " + (list.empty() ? "none" : list) + ")");
   }
   const std::string restart_file = restart_path(o.out);
+  // Every output is checked before anything runs: an unwritable one fails now, not after the run.
+  check_output_file(o.out, "--out");
+  if (o.checkpoint_every > 0 || o.checkpoint_minutes > 0) check_output_file(restart_file, "--out (its periodic checkpoint)");
+  check_output_dir(o.vtk_dir, "--vtk");
+  check_output_file(o.wall_forces, "--wall-forces");
+  check_output_file(o.track, "--track");
   const std::string walls_fingerprint = scene.walls_fingerprint();
   Simulation sim;
   CheckpointMeta meta;
   if (o.restart && std::filesystem::exists(restart_file)) {
     read_checkpoint(restart_file, sim, meta);
-    if (meta.scene_text != scene.text)
-      throw InputError(o.scene + ": the scene file differs from the one the periodic checkpoint " + restart_file +
-                       " was written with; an exact restart needs the same scene (delete the periodic checkpoint to start over)");
-    if (!meta.scene_walls.empty() && meta.scene_walls != walls_fingerprint)
-      throw InputError(o.scene + ": the walls this scene builds differ from those the periodic checkpoint " + restart_file +
-                       " was written with (was a wall's STL file edited?); an exact restart needs the same walls (delete the "
-                       "periodic checkpoint to start over)");
-    if (meta.run.stage != stage->name)
-      throw InputError(restart_file + ": the periodic checkpoint belongs to stage \"" + meta.run.stage + "\", not \"" + stage->name + "\"");
+    check_resumable(o, scene, *stage, restart_file, meta);
     // The same scene text gives the same contact constants, [[pair]] entries included.
     sim.materials = MaterialTable(scene.materials, scene.mixing, scene.pairs);
     if (!o.quiet) std::cerr << "run-stage: resuming stage " << stage->name << " at step " << sim.step << " from " << restart_file << "\n";
@@ -109,14 +154,17 @@ void run_stage(const StageOptions& o) {
     read_checkpoint(o.in, sim, meta);
     adopt_scene(sim, scene);
     apply_actions(sim, *stage);
+    check_inside_walls(sim, scene, o.in);
     sim.dt = choose_time_step(sim, scene.simulation);
     start_motions(sim, *stage);
-    meta.run = RunInfo{stage->name, sim.step, static_cast<std::int64_t>(std::ceil(stage->duration / sim.dt - 1e-9)), sim.time, {}, {}};
+    meta.run = RunInfo{stage->name, sim.step, static_cast<std::int64_t>(std::ceil(stage->duration / sim.dt - 1e-9)), sim.time, {}, {},
+                       o.in, seal_fingerprint(o.in)};
   }
   meta.writer = "run-stage";
   meta.scene_path = scene.path;
   meta.scene_text = scene.text;
   meta.scene_walls = walls_fingerprint;
+  meta.scene_files = scene.files;
   RunInfo& run = meta.run;
 
   std::vector<ServoGroup> servos = stage_servos(sim, scene, *stage);
@@ -133,58 +181,104 @@ void run_stage(const StageOptions& o) {
   double k_max = 0, c_max = 0;
   servo_constants(sim, k_max, c_max);
   const std::int64_t resume_step = sim.step > run.stage_start_step ? sim.step : -1;
-  WallLog wall_log(o.wall_forces, sim.walls, o.wall_forces_every, resume_step);
+  // The track first: a missing id is an error before any file is opened.
   ParticleTrack track(o.track, o.track_ids, sim, o.track_every, resume_step);
-  if (resume_step < 0) track.record(sim, 0, true);  // the state at the stage start
-
+  WallLog wall_log(o.wall_forces, sim.walls, o.wall_forces_every, resume_step);
   FrameWriter frames(o.vtk_dir, stage->name);
-  const std::int64_t interval =
-      stage->output_every > 0 ? std::max<std::int64_t>(1, std::llround(stage->output_every / sim.dt)) : run.stage_steps;
-  auto maybe_frame = [&]() {
-    const std::int64_t s = sim.step - run.stage_start_step;
-    if (s % interval == 0 || s == run.stage_steps) {
-      // A frame index is known from the step, so a resumed run rewrites exactly the same files.
-      const std::size_t index = static_cast<std::size_t>(s / interval) + (s % interval != 0);
-      run.frame_times.resize(index);
-      run.frame_times.push_back(sim.time);
-      frames.write(sim, run.frame_times);
-    }
-  };
-  if (sim.step == run.stage_start_step) maybe_frame();
+  if (resume_step < 0) frames.discard();  // a fresh start: staged frames of an earlier run are stale
+  // Partial outputs (staged frames, .partial CSV files) are kept for a restart while a periodic
+  // checkpoint of this run exists, and removed when a run that none can continue fails.
+  bool have_checkpoint = resume_step >= 0;
+  const StopOnSignal stop;
+  try {
+    if (resume_step < 0) track.record(sim, 0, true);  // the state at the stage start
+    const std::int64_t interval =
+        stage->output_every > 0 ? std::max<std::int64_t>(1, std::llround(stage->output_every / sim.dt)) : run.stage_steps;
+    auto maybe_frame = [&]() {
+      const std::int64_t s = sim.step - run.stage_start_step;
+      if (s % interval == 0 || s == run.stage_steps) {
+        // A frame index is known from the step, so a resumed run rewrites exactly the same files.
+        const std::size_t index = static_cast<std::size_t>(s / interval) + (s % interval != 0);
+        run.frame_times.resize(index);
+        run.frame_times.push_back(sim.time);
+        frames.write(sim, run.frame_times);
+      }
+    };
+    if (sim.step == run.stage_start_step) maybe_frame();
 
-  Progress progress("run-stage " + stage->name, run.stage_steps, o.quiet);
-  // Nothing in a stage reads the pair contacts' forces: post-processing computes them on a copy
-  // (contact_forces_at_state), checkpoints keep keys, springs and bonds.
-  sim.params.keep_pair_results = false;
-  const std::int64_t end = run.stage_start_step + run.stage_steps;
-  while (sim.step < end) {
-    sim.advance();
-    // Servo speeds for the next step from this step's forces: the periodic checkpoint holds them as
-    // the walls' motion, so a resumed run continues exactly.
-    if (!servos.empty()) drive_servos(sim, servos, k_max, c_max);
-    maybe_frame();
-    const std::int64_t done = sim.step - run.stage_start_step;
-    wall_log.record(sim, done, sim.step == end);
-    track.record(sim, done, sim.step == end);
-    progress.update(done, sim.time);
-    if (o.checkpoint_every > 0 && done % o.checkpoint_every == 0 && sim.step < end) keep_integrals(), write_checkpoint(restart_file, sim, meta);
-  }
-  progress.finish(sim.step - run.stage_start_step, sim.time);
-  if (!servos.empty()) {
-    // The servo walls stop where they are; report what they hold.
-    update_areas(sim, servos);
-    const std::vector<WallLoad> f = sim.wall_loads();
-    for (std::size_t k = 0; k < servos.size(); ++k) {
-      for (std::size_t e : servos[k].elements) sim.walls[e].start_motion(WallMotion{}, sim.time);
-      if (!o.quiet)
-        std::cerr << "run-stage: servo " << stage->servos[k].wall << " holds " << servos[k].stress(f) << " Pa (target "
-                  << servos[k].target << " Pa)\n";
+    Progress progress("run-stage " + stage->name, run.stage_steps, o.quiet);
+    // Nothing in a stage reads the pair contacts' forces: post-processing computes them on a copy
+    // (contact_forces_at_state), checkpoints keep keys, springs and bonds.
+    sim.params.keep_pair_results = false;
+    const std::int64_t end = run.stage_start_step + run.stage_steps;
+    const bool periodic = o.checkpoint_every > 0 || o.checkpoint_minutes > 0;
+    auto last_checkpoint = std::chrono::steady_clock::now();
+    std::int64_t checkpoint_step = have_checkpoint ? sim.step : -1;
+    auto write_periodic = [&]() {
+      keep_integrals();
+      write_checkpoint(restart_file, sim, meta);
+      have_checkpoint = true;
+      checkpoint_step = sim.step;
+      last_checkpoint = std::chrono::steady_clock::now();
+    };
+    while (sim.step < end) {
+      sim.advance();
+      // Servo speeds for the next step from this step's forces: the periodic checkpoint holds them as
+      // the walls' motion, so a resumed run continues exactly.
+      if (!servos.empty()) drive_servos(sim, servos, k_max, c_max);
+      maybe_frame();
+      const std::int64_t done = sim.step - run.stage_start_step;
+      wall_log.record(sim, done, sim.step == end);
+      track.record(sim, done, sim.step == end);
+      progress.update(done, sim.time);
+      if (sim.step == end) break;
+      const bool by_steps = o.checkpoint_every > 0 && done % o.checkpoint_every == 0;
+      // The clock is read every 64 steps only (as Progress does).
+      const bool by_time = o.checkpoint_minutes > 0 && (done & 63) == 0 &&
+                           std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint).count() >= 60 * o.checkpoint_minutes;
+      if (by_steps || by_time) write_periodic();
+      if (const int signal = StopOnSignal::received()) {
+        if (periodic && checkpoint_step != sim.step) write_periodic();
+        std::ostringstream m;
+        m << "interrupted by " << StopOnSignal::name(signal) << " after step " << sim.step << " (" << done << " of " << run.stage_steps
+          << " steps of stage " << stage->name << ", t = " << sim.time << " s); ";
+        if (have_checkpoint) {
+          const bool has_flag = (" " + o.command + " ").find(" --restart ") != std::string::npos;
+          m << "the periodic checkpoint " << restart_file << " holds step " << checkpoint_step << ". To resume, run:\n  " << o.command
+            << (has_flag ? "" : " --restart");
+        } else {
+          m << "no periodic checkpoint (--checkpoint-minutes 0 and no --checkpoint-every), nothing written. To run the stage again, run:\n  "
+            << o.command;
+        }
+        throw Interrupted(m.str());
+      }
     }
+    progress.finish(sim.step - run.stage_start_step, sim.time);
+    if (!servos.empty()) {
+      // The servo walls stop where they are; report what they hold.
+      update_areas(sim, servos);
+      const std::vector<WallLoad> f = sim.wall_loads();
+      for (std::size_t k = 0; k < servos.size(); ++k) {
+        for (std::size_t e : servos[k].elements) sim.walls[e].start_motion(WallMotion{}, sim.time);
+        if (!o.quiet)
+          std::cerr << "run-stage: servo " << stage->servos[k].wall << " holds " << servos[k].stress(f) << " Pa (target "
+                    << servos[k].target << " Pa)\n";
+      }
+    }
+    // Before the checkpoint: a finished checkpoint means finished outputs (make).
+    wall_log.finish();
+    track.finish();
+    frames.commit(run.frame_times.size());
+    keep_integrals();
+    write_checkpoint(o.out, sim, meta);
+  } catch (...) {
+    if (!have_checkpoint) {
+      frames.discard();
+      wall_log.discard();
+      track.discard();
+    }
+    throw;
   }
-  wall_log.finish();  // before the checkpoint: a finished checkpoint means finished outputs (make)
-  track.finish();
-  keep_integrals();
-  write_checkpoint(o.out, sim, meta);
   std::remove(restart_file.c_str());
 }
 

@@ -1,6 +1,6 @@
 #pragma once
 // run-stage: one stage of a scene from a checkpoint to a checkpoint, with periodic checkpoints,
-// exact resumption (--restart) and VTK frames.
+// exact resumption (--restart), VTK frames, and a clean stop on Ctrl-C or SIGTERM (run/interrupt.hpp).
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -14,6 +14,7 @@ struct StageOptions {
   std::string out;    // output checkpoint, written when the stage completes
   std::string vtk_dir;               // VTK frames and .pvd series; empty = none
   std::int64_t checkpoint_every = 0; // steps between periodic checkpoints; 0 = none
+  double checkpoint_minutes = 30;    // wall-clock minutes between periodic checkpoints; 0 = none
   bool restart = false;              // resume from the periodic checkpoint if there is one
   std::string wall_forces;           // per-wall force and torque CSV; empty = none
   std::int64_t wall_forces_every = 100;  // steps between its rows
@@ -21,6 +22,7 @@ struct StageOptions {
   std::vector<std::int64_t> track_ids;   // their ids
   std::int64_t track_every = 100;        // steps between its rows
   bool quiet = false;
+  std::string command;  // the command line as given, for the resume command printed on Ctrl-C
 };
 
 // The periodic checkpoint that belongs to an output path: "x.h5" -> "x.restart.h5".

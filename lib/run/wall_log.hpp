@@ -20,6 +20,7 @@ class WallLog {
   // Appends one row per wall if `steps_done` is a multiple of `every` or `last`.
   void record(const Simulation& sim, std::int64_t steps_done, bool last);
   void finish() { csv_.finish(); }  // closes the file and renames it into place
+  void discard() { csv_.discard(); }  // a failed run that no restart can continue
 
  private:
   CsvSeries csv_;

@@ -131,6 +131,9 @@ struct Scene {
   std::optional<CopySpec> copy;
   std::optional<CompactSpec> compact;
   std::vector<StageSpec> stages;
+  // Every other file the scene reads (STL walls, mesh regions), each "fnv1a64=<hex> size=N PATH"
+  // (io/file_seal.hpp), in the order first read: a restart compares them, as the scene text.
+  std::vector<std::string> files;
 
   const StageSpec* stage(const std::string& name) const;
   // A fingerprint of the walls as built (names, materials, every vertex to the bit): the walls
