@@ -11,6 +11,7 @@
 #include "control/servo.hpp"
 #include "core/error.hpp"
 #include "generation/fill.hpp"
+#include "generation/size_distribution.hpp"
 #include "io/checkpoint.hpp"
 #include "io/scene_parser.hpp"
 #include "run/progress.hpp"
@@ -72,6 +73,16 @@ void apply_cuts(const char* tool, Simulation& sim, const std::vector<CutSpec>& c
   }
 }
 
+// The size distribution asked against the radii of the random spheres drawn (the last `count`
+// particles), before settling and cuts: what the generator controls.
+void report_sizes(const char* tool, const Simulation& sim, const GenerationSpec& g) {
+  const std::vector<double>& all = sim.particles.radius;
+  const std::vector<double> radii(all.end() - g.count, all.end());
+  const RadiusSampler sampler(g.size, g.radius_min, g.radius_max);
+  std::printf("%s: size distribution %s, %d random spheres: asked, realised\n", tool, size_kind_name(g.size.kind), g.count);
+  for (const SizeCheck& c : size_report(sampler, radii)) std::printf("%s:   %s: %.4g, %.4g\n", tool, c.what.c_str(), c.asked, c.realised);
+}
+
 // The common end of gen-primary and copy-settle: time step, settle, cuts (gen-primary), checkpoint,
 // report.
 void settle_and_write(const char* tool, Simulation& sim, const SettleSpec& spec, const Scene& scene, const GenerateOptions& o,
@@ -92,6 +103,7 @@ void gen_primary(const GenerateOptions& o) {
   Simulation sim = simulation_from_scene(scene);
   std::mt19937_64 rng(scene.generation->seed);
   fill_random(sim, *scene.generation, rng);
+  report_sizes("gen-primary", sim, *scene.generation);
   settle_and_write("gen-primary", sim, scene.generation->settle, scene, o, t0, scene.generation->cuts);
 }
 
