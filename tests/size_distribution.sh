@@ -32,8 +32,9 @@ for line in open(sys.argv[3]):
     d, asked, realised = map(float, g.groups())
     mine = m[2 * a < d].sum() / m.sum()
     assert abs(mine - realised) < 1e-3, f"report says {realised} at d = {d}, the checkpoint {mine}"
-    # 400 spheres: the standard error of a mass fraction is at most about 0.03 here; 4 of them.
-    assert abs(realised - asked) < 0.12, f"mass fraction passing {d} m: asked {asked}, realised {realised}"
+    # 400 spheres: the standard error of a mass fraction is at most 0.036 here (at 2 mm, by the
+    # delta method on 400,000 draws of this curve); 4 of them.
+    assert abs(realised - asked) < 0.15, f"mass fraction passing {d} m: asked {asked}, realised {realised}"
 print("ok   sieve report matches the checkpoint and the curve")
 PY
 sed 's/\[2.0e-3, 0.5\], \[3.0e-3, 1.0\]/[2.0e-3, 0.5], [3.0e-3, 0.9]/' "$scene" > "$tmp/bad.toml"
