@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -419,7 +420,13 @@ INSTANTIATE_TEST_SUITE_P(
                 {"generation.radius_min", "not used with generation.size.distribution = \"sieve\""}},
         BadSize{"sieve larger than the box", sieve("[[0.5e-3, 0.0], [0.03, 1.0]]"),
                 {"generation.size", "largest sieve diameter does not fit"}},
-        BadSize{"missing distribution", with_size("mean_radius = 1e-3\n"), {"generation.size.distribution is missing"}}));
+        BadSize{"missing distribution", with_size("mean_radius = 1e-3\n"), {"generation.size.distribution is missing"}}),
+    [](const ::testing::TestParamInfo<BadSize>& i) {  // the case's name, as gtest allows it (letters, digits, _)
+      std::string n = i.param.what;
+      for (char& c : n)
+        if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+      return n;
+    });
 
 }  // namespace
 }  // namespace dem

@@ -185,14 +185,14 @@ std::vector<SizeCheck> size_report(const RadiusSampler& sampler, const std::vect
     for (const auto& [d, F] : sampler.spec().sieve) {
       std::ostringstream what;
       what << "mass fraction passing d = " << d << " m";
-      out.push_back({what.str(), F, mass_fraction_below(radii, d)});
+      out.push_back({what.str(), d, F, mass_fraction_below(radii, d)});
     }
     return out;
   }
   const auto [m, var] = mean_variance(radii);
-  out.push_back({"mean radius [m]", sampler.mean(), m});
-  out.push_back({"std of radius [m]", sampler.stddev(), std::sqrt(var)});
-  out.push_back({"median radius [m]", sampler.quantile(0.5), sample_median(radii)});
+  out.push_back({"mean radius [m]", 0, sampler.mean(), m});
+  out.push_back({"std of radius [m]", 0, sampler.stddev(), std::sqrt(var)});
+  out.push_back({"median radius [m]", 0, sampler.quantile(0.5), sample_median(radii)});
   return out;
 }
 

@@ -51,6 +51,7 @@ class RadiusSampler {
 // One line of a size report: a quantity of the distribution asked and of the radii drawn.
 struct SizeCheck {
   std::string what;
+  double diameter = 0;  // the sieve's diameter [m] (sieve rows; 0 otherwise)
   double asked = 0, realised = 0;
 };
 
