@@ -357,6 +357,9 @@ std::string with_size(const std::string& table, bool radii = true) {
 TEST(SizeScene, EachDistributionParses) {
   const Scene none = parse_scene(kScene, "scene.toml");
   EXPECT_EQ(none.generation->size.kind, SizeSpec::Kind::Uniform);
+  const Scene u = parse_scene(with_size("distribution = \"uniform\"\n"), "scene.toml");
+  EXPECT_EQ(u.generation->size.kind, SizeSpec::Kind::Uniform);
+  EXPECT_EQ(u.generation->radius_max, 0.002);
   const Scene n = parse_scene(with_size("distribution = \"normal\"\nmean_radius = 1.5e-3\nstd_radius = 0.2e-3\n"), "scene.toml");
   EXPECT_EQ(n.generation->size.kind, SizeSpec::Kind::Normal);
   EXPECT_EQ(n.generation->size.std_radius, 0.2e-3);

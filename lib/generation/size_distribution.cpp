@@ -24,7 +24,8 @@ double from_z(const SizeSpec& s, double z) {
   return s.kind == SizeSpec::Kind::Normal ? s.mean_radius + s.std_radius * z : s.median_radius * std::exp(std::log(s.geometric_std) * z);
 }
 
-// z in [lo, hi] with Phi(z) = target, by bisection: always terminates, exact to the last bit of z.
+// z in [lo, hi] with Phi(z) = target, by bisection: always terminates (200 halvings at most, far
+// below a double's spacing in r), needs no approximation of the inverse.
 double inverse_Phi(double target, double lo, double hi) {
   for (int k = 0; k < 200; ++k) {
     const double mid = 0.5 * (lo + hi);
