@@ -7,14 +7,7 @@
 set -u
 bin=$1 src=$2 py=$3
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
-fail=0
-check() {  # check NAME EXPECTED_CODE PATTERN -- command...
-  local name=$1 want=$2 pattern=$3; shift 4
-  "$@" > "$tmp/out" 2>&1; local got=$?
-  if [ "$got" != "$want" ] || ! grep -q -- "$pattern" "$tmp/out"; then
-    echo "FAIL $name: exit $got (want $want), pattern '$pattern' in:"; sed 's/^/    /' "$tmp/out"; fail=1
-  else echo "ok   $name"; fi
-}
+source "$(dirname "$0")/check_lib.sh"  # check NAME EXPECTED_CODE PATTERN -- command...
 reseal() {  # after an edit with h5py (docs/checkpoint.md "Editing a checkpoint")
   "$py" -c "
 import sys, zlib

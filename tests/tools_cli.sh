@@ -4,14 +4,7 @@
 set -u
 bin=$1 data=$2
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
-fail=0
-check() {  # check NAME EXPECTED_CODE PATTERN -- command...
-  local name=$1 want=$2 pattern=$3; shift 4
-  "$@" > "$tmp/out" 2>&1; local got=$?
-  if [ "$got" != "$want" ] || ! grep -q -- "$pattern" "$tmp/out"; then
-    echo "FAIL $name: exit $got (want $want), pattern '$pattern' in:"; sed 's/^/    /' "$tmp/out"; fail=1
-  else echo "ok   $name"; fi
-}
+source "$(dirname "$0")/check_lib.sh"  # check NAME EXPECTED_CODE PATTERN -- command...
 for t in gen-primary copy-settle compact run-stage post-macro; do
   check "$t --help" 0 "--scene\|--reference" -- "$bin/$t" --help
   check "$t --version" 0 "0\.1\.0" -- "$bin/$t" --version

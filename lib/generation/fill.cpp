@@ -1,77 +1,136 @@
 #include "generation/fill.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <set>
 #include <sstream>
 #include <unordered_map>
 
 #include "core/error.hpp"
+#include "generation/size_distribution.hpp"
 
 namespace dem {
 
-void fill_random(Simulation& sim, const GenerationSpec& spec, std::mt19937_64& rng) {
+namespace {
+
+// The spheres placed so far, in a hash grid of cells 2 radius_max wide (O(1) overlap checks); the
+// given spheres may be larger than radius_max, so candidates are checked against them directly.
+class FreeSpace {
+ public:
+  FreeSpace(const Particles& p, const GenerationSpec& spec, std::size_t first) : p_(p), spec_(spec), first_(first), cell_(2 * spec.radius_max) {}
+
+  bool free(const Vec3& x, double a) const {
+    for (std::size_t k = 0; k < spec_.placed.size(); ++k)
+      if ((p_.x[first_ + k] - x).norm() < a + p_.radius[first_ + k]) return false;
+    const long ci = cell(x[0]), cj = cell(x[1]), ck = cell(x[2]);
+    for (long di = -1; di <= 1; ++di)
+      for (long dj = -1; dj <= 1; ++dj)
+        for (long dk = -1; dk <= 1; ++dk) {
+          auto it = grid_.find(key(ci + di, cj + dj, ck + dk));
+          if (it == grid_.end()) continue;
+          for (int o : it->second) {
+            const double r = a + p_.radius[o];
+            if ((p_.x[o] - x).squaredNorm() < r * r) return false;
+          }
+        }
+    return true;
+  }
+  void add(const Vec3& x, int slot) { grid_[key(cell(x[0]), cell(x[1]), cell(x[2]))].push_back(slot); }
+
+ private:
+  long cell(double c) const { return static_cast<long>(std::floor(c / cell_)); }
+  static long key(long i, long j, long k) { return (i * 73856093L) ^ (j * 19349663L) ^ (k * 83492791L); }
+
+  const Particles& p_;
+  const GenerationSpec& spec_;
+  std::size_t first_;
+  double cell_;
+  std::unordered_map<long, std::vector<int>> grid_;
+};
+
+Vec3 draw_centre(const GenerationSpec& spec, double a, std::mt19937_64& rng) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  const double cell = 2 * spec.radius_max;
-  // Hash grid of placed spheres for O(1) overlap checks.
-  std::unordered_map<long, std::vector<int>> grid;
-  auto key = [&](long i, long j, long k) { return (i * 73856093L) ^ (j * 19349663L) ^ (k * 83492791L); };
+  Vec3 x;
+  for (int d = 0; d < 3; ++d) x[d] = spec.box_min[d] + a + (spec.box_max[d] - spec.box_min[d] - 2 * a) * unit(rng);
+  return x;
+}
+
+int draw_material(const GenerationSpec& spec, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  double pick = unit(rng);
+  for (const auto& [m, f] : spec.material_fractions) {
+    if (pick < f) return m;
+    pick -= f;
+  }
+  return spec.material_fractions.back().first;
+}
+
+[[noreturn]] void too_full(const GenerationSpec& spec, std::size_t placed, long max_attempts) {
+  std::ostringstream m;
+  m << "generation: placed only " << placed << " of " << spec.count << " random spheres in the box after " << max_attempts
+    << " attempts; enlarge generation.box_min/box_max or lower generation.count (random placement reaches a solid "
+       "fraction of about 0.3; settling compacts it)";
+  throw InputError(m.str());
+}
+
+long max_attempts(const GenerationSpec& spec) { return 1000L * spec.count + 100000; }
+
+// Uniform radii (the default): radius, centre and material drawn afresh at every attempt, exactly
+// as before size distributions existed, so older scenes give the same bits.
+void place_drawn_per_attempt(Simulation& sim, const GenerationSpec& spec, const RadiusSampler& sizes, FreeSpace& space,
+                             Index first_id, std::size_t first, std::mt19937_64& rng) {
+  Particles& p = sim.particles;
+  const std::size_t total = first + spec.placed.size() + static_cast<std::size_t>(spec.count);
+  long attempts = 0;
+  while (p.size() < total) {
+    if (++attempts > max_attempts(spec)) too_full(spec, p.size() - first - spec.placed.size(), max_attempts(spec));
+    const double a = sizes.draw(rng);
+    const Vec3 x = draw_centre(spec, a, rng);
+    const int mat = draw_material(spec, rng);
+    if (!space.free(x, a)) continue;
+    space.add(x, static_cast<int>(p.size()));
+    p.add(first_id + static_cast<Index>(p.size() - first), x, a, sim.materials.materials()[mat].density, mat);
+  }
+}
+
+// Other distributions: all radii drawn first (so the set drawn is the distribution asked: a
+// rejected candidate keeps its radius), then placed largest first (large spheres find room while
+// the box is empty); each sphere's material is drawn once, its centre at every attempt.
+void place_largest_first(Simulation& sim, const GenerationSpec& spec, const RadiusSampler& sizes, FreeSpace& space,
+                         Index first_id, std::size_t first, std::mt19937_64& rng) {
+  Particles& p = sim.particles;
+  std::vector<double> radii = sizes.draw(static_cast<std::size_t>(spec.count), rng);
+  std::sort(radii.begin(), radii.end(), std::greater<double>());
+  long attempts = 0;
+  for (double a : radii) {
+    const int mat = draw_material(spec, rng);
+    for (;;) {
+      if (++attempts > max_attempts(spec)) too_full(spec, p.size() - first - spec.placed.size(), max_attempts(spec));
+      const Vec3 x = draw_centre(spec, a, rng);
+      if (!space.free(x, a)) continue;
+      space.add(x, static_cast<int>(p.size()));
+      p.add(first_id + static_cast<Index>(p.size() - first), x, a, sim.materials.materials()[mat].density, mat);
+      break;
+    }
+  }
+}
+
+}  // namespace
+
+void fill_random(Simulation& sim, const GenerationSpec& spec, std::mt19937_64& rng) {
+  const RadiusSampler sizes(spec.size, spec.radius_min, spec.radius_max);
   Particles& p = sim.particles;
   const Index first_id = p.max_id() + 1;
-  // Given spheres first (ids in file order); they may be larger than radius_max, so the random ones
-  // are checked against them directly rather than through the grid.
   const std::size_t first = p.size();
+  // Given spheres first (ids in file order).
   for (const PlacedSphere& s : spec.placed) {
     p.add(first_id + static_cast<Index>(p.size() - first), s.centre, s.radius, sim.materials.materials()[s.material].density,
           s.material);
   }
-  auto clear_of_placed = [&](const Vec3& x, double a) {
-    for (std::size_t k = 0; k < spec.placed.size(); ++k)
-      if ((p.x[first + k] - x).norm() < a + p.radius[first + k]) return false;
-    return true;
-  };
-  const std::size_t total = first + spec.placed.size() + static_cast<std::size_t>(spec.count);
-  const long max_attempts = 1000L * spec.count + 100000;
-  long attempts = 0;
-  while (p.size() < total) {
-    if (++attempts > max_attempts) {
-      std::ostringstream m;
-      m << "generation: placed only " << p.size() - first - spec.placed.size() << " of " << spec.count << " random spheres in the box after " << max_attempts
-        << " attempts; enlarge generation.box_min/box_max or lower generation.count (random placement reaches a solid "
-           "fraction of about 0.3; settling compacts it)";
-      throw InputError(m.str());
-    }
-    const double a = spec.radius_min + (spec.radius_max - spec.radius_min) * unit(rng);
-    Vec3 x;
-    for (int d = 0; d < 3; ++d) x[d] = spec.box_min[d] + a + (spec.box_max[d] - spec.box_min[d] - 2 * a) * unit(rng);
-    double pick = unit(rng);
-    int mat = spec.material_fractions.back().first;
-    for (const auto& [m, f] : spec.material_fractions) {
-      if (pick < f) {
-        mat = m;
-        break;
-      }
-      pick -= f;
-    }
-    const long ci = static_cast<long>(std::floor(x[0] / cell)), cj = static_cast<long>(std::floor(x[1] / cell)),
-               ck = static_cast<long>(std::floor(x[2] / cell));
-    bool free = clear_of_placed(x, a);
-    for (long di = -1; di <= 1 && free; ++di)
-      for (long dj = -1; dj <= 1 && free; ++dj)
-        for (long dk = -1; dk <= 1 && free; ++dk) {
-          auto it = grid.find(key(ci + di, cj + dj, ck + dk));
-          if (it == grid.end()) continue;
-          for (int o : it->second) {
-            const double r = a + p.radius[o];
-            if ((p.x[o] - x).squaredNorm() < r * r) {
-              free = false;
-              break;
-            }
-          }
-        }
-    if (!free) continue;
-    grid[key(ci, cj, ck)].push_back(static_cast<int>(p.size()));
-    p.add(first_id + static_cast<Index>(p.size() - first), x, a, sim.materials.materials()[mat].density, mat);
-  }
+  FreeSpace space(p, spec, first);
+  if (spec.size.kind == SizeSpec::Kind::Uniform) place_drawn_per_attempt(sim, spec, sizes, space, first_id, first, rng);
+  else place_largest_first(sim, spec, sizes, space, first_id, first, rng);
 }
 
 void tile(Simulation& sim, int nx, int ny, int nz, const Vec3& period) {

@@ -8,8 +8,9 @@
 namespace dem {
 
 // Adds spec.placed (ids first, in order), then places spec.count non-overlapping spheres at pseudo-random positions inside spec's box (random
-// sequential addition). Radius uniform in [radius_min, radius_max], materials drawn by fraction.
-// Throws InputError if the box cannot hold them. Same seed, same particles.
+// sequential addition). Radii from spec.size (generation/size_distribution.hpp): uniform ones drawn
+// at each attempt as always; others all drawn first, then placed largest first. Materials drawn by
+// fraction. Throws InputError if the box cannot hold them. Same seed, same particles.
 void fill_random(Simulation& sim, const GenerationSpec& spec, std::mt19937_64& rng);
 
 // Tiles the particles nx x ny x nz times with the given period; ids are renumbered 0..N-1 in

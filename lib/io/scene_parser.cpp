@@ -15,6 +15,7 @@
 
 #include "contact/model_table.hpp"
 #include "core/error.hpp"
+#include "generation/size_distribution.hpp"
 #include "io/file_seal.hpp"
 #include "io/stl.hpp"
 #include "walls/primitives.hpp"
@@ -698,6 +699,101 @@ std::vector<CutSpec> read_cuts(TableReader& gen) {
   return out;
 }
 
+// One row of generation.size.sieve: [diameter (m), cumulative mass fraction passing], checked
+// against the row before it.
+std::pair<double, double> read_sieve_row(TableReader& r, const toml::node& e, std::size_t k, const std::pair<double, double>* prev) {
+  const std::string key = indexed("sieve", k);
+  const toml::array* row = e.as_array();
+  if (!row || row->size() != 2 || !row->get(0)->is_number() || !row->get(1)->is_number())
+    r.fail_at(&e, key, "expected a row [diameter (m), cumulative mass fraction passing]");
+  const double d = *row->get(0)->value<double>(), f = *row->get(1)->value<double>();
+  std::ostringstream v;
+  v << "[" << d << ", " << f << "]: ";
+  if (!std::isfinite(d) || !(d > 0)) r.fail_at(&e, key, v.str() + "the diameter must be > 0 m");
+  if (!(f >= 0 && f <= 1)) r.fail_at(&e, key, v.str() + "the fraction passing must be in [0, 1]");
+  if (prev && !(d > prev->first)) {
+    std::ostringstream m;
+    m << v.str() << "diameters must increase row by row (" << d << " m is not above row " << k - 1 << "'s " << prev->first << " m)";
+    r.fail_at(&e, key, m.str());
+  }
+  if (prev && f < prev->second) {
+    std::ostringstream m;
+    m << v.str() << "fractions passing must not decrease (" << f << " is below row " << k - 1 << "'s " << prev->second << ")";
+    r.fail_at(&e, key, m.str());
+  }
+  if (!prev && f != 0) r.fail_at(&e, key, v.str() + "the first row's fraction passing must be 0 (no mass below the smallest sieve)");
+  return {d, f};
+}
+
+// generation.size.sieve = [[d0, 0.0], ..., [dn, 1.0]]: a sieve curve, diameters increasing.
+std::vector<std::pair<double, double>> read_sieve(TableReader& r) {
+  const toml::node& n = r.required("sieve");
+  const toml::array* a = n.as_array();
+  if (!a || a->size() < 2) r.fail_at(&n, "sieve", "expected at least 2 rows [diameter (m), cumulative mass fraction passing]");
+  std::vector<std::pair<double, double>> rows;
+  for (std::size_t k = 0; k < a->size(); ++k) rows.push_back(read_sieve_row(r, *a->get(k), k, rows.empty() ? nullptr : &rows.back()));
+  if (rows.back().second != 1) {
+    std::ostringstream m;
+    m << "the last row's fraction passing is " << rows.back().second << ": it must be 1 (all the mass passes the largest sieve)";
+    r.fail_at(a->get(a->size() - 1), indexed("sieve", a->size() - 1), m.str());
+  }
+  return rows;
+}
+
+// [generation.size]: the size distribution (generation/size_distribution.hpp); uniform when absent.
+SizeSpec read_size(TableReader& gen) {
+  SizeSpec s;
+  const toml::table* t = gen.subtable("size");
+  if (!t) return s;
+  TableReader r(*t, gen.file(), gen.name("size"));
+  static const std::vector<std::string> names = {"uniform", "normal", "lognormal", "sieve"};
+  const std::string kind = r.choice("distribution", names);
+  s.kind = static_cast<SizeSpec::Kind>(std::find(names.begin(), names.end(), kind) - names.begin());
+  if (s.kind == SizeSpec::Kind::Normal) {
+    s.mean_radius = r.number("mean_radius", 0, kInf, "m", true);
+    s.std_radius = r.number("std_radius", 0, kInf, "m", true);
+  } else if (s.kind == SizeSpec::Kind::LogNormal) {
+    s.median_radius = r.number("median_radius", 0, kInf, "m", true);
+    s.geometric_std = r.number("geometric_std", 1, kInf, "(dimensionless)", true);
+  } else if (s.kind == SizeSpec::Kind::Sieve) {
+    s.sieve = read_sieve(r);
+  }
+  r.finish();
+  return s;
+}
+
+// The normal and log-normal must keep a fair share of their mass within [radius_min, radius_max]:
+// else the truncated draw piles up at one bound.
+void check_truncation(TableReader& gen, const GenerationSpec& g) {
+  const double mass = truncated_mass(g.size, g.radius_min, g.radius_max);
+  if (mass >= kMinTruncatedMass) return;
+  TableReader r(*gen.subtable("size"), gen.file(), gen.name("size"));
+  const bool normal = g.size.kind == SizeSpec::Kind::Normal;
+  std::ostringstream m;
+  m << "only a fraction " << mass << " of the " << (normal ? "normal" : "log-normal") << " distribution lies in [radius_min, radius_max] = ["
+    << g.radius_min << ", " << g.radius_max << "] m (at least " << kMinTruncatedMass << " is needed): move "
+    << (normal ? "mean_radius, widen std_radius" : "median_radius, widen geometric_std") << " or the bounds";
+  r.fail(normal ? "mean_radius" : "median_radius", m.str());
+}
+
+// radius_min and radius_max: given, or (sieve) the curve's first and last diameters / 2.
+void read_radius_bounds(TableReader& r, GenerationSpec& g) {
+  const double smallest = (g.box_max - g.box_min).minCoeff();
+  if (g.size.kind == SizeSpec::Kind::Sieve) {
+    for (const char* key : {"radius_min", "radius_max"})
+      if (r.has(key)) r.fail(key, "not used with generation.size.distribution = \"sieve\": the curve's first and last diameters bound the sizes");
+    g.radius_min = 0.5 * g.size.sieve.front().first;
+    g.radius_max = 0.5 * g.size.sieve.back().first;
+    if (2 * g.radius_max > smallest) r.fail("size", "the largest sieve diameter does not fit in the generation box");
+    return;
+  }
+  g.radius_min = r.number("radius_min", 0, kInf, "m", true);
+  g.radius_max = r.number("radius_max", 0, kInf, "m", true);
+  if (g.radius_min > g.radius_max) r.fail("radius_max", "radius_max must be >= radius_min (" + std::to_string(g.radius_min) + " m)");
+  if (2 * g.radius_max > smallest) r.fail("radius_max", "a sphere of this radius does not fit in the generation box");
+  check_truncation(r, g);
+}
+
 void read_generation(TableReader& top, Scene& sc) {
   const toml::table* t = top.subtable("generation");
   if (!t) return;
@@ -712,11 +808,8 @@ void read_generation(TableReader& top, Scene& sc) {
       r.fail("box_max", std::string("along the periodic axis ") + "xyz"[d] +
                             " the generation box must lie within simulation.periodic (spheres placed across the boundary could overlap)");
   g.count = static_cast<int>(r.integer("count", 0, 100000000));
-  g.radius_min = r.number("radius_min", 0, kInf, "m", true);
-  g.radius_max = r.number("radius_max", 0, kInf, "m", true);
-  if (g.radius_min > g.radius_max) r.fail("radius_max", "radius_max must be >= radius_min (" + std::to_string(g.radius_min) + " m)");
-  const double smallest = (g.box_max - g.box_min).minCoeff();
-  if (2 * g.radius_max > smallest) r.fail("radius_max", "a sphere of this radius does not fit in the generation box");
+  g.size = read_size(r);
+  read_radius_bounds(r, g);
   g.seed = static_cast<std::uint64_t>(r.integer_or("seed", 1, 0, std::numeric_limits<long>::max()));
   const toml::node& mn = r.required("materials");
   const toml::table* mt = mn.as_table();

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <iomanip>
 #include <numbers>
 #include <random>
 #include <sstream>
@@ -11,6 +12,8 @@
 #include "control/servo.hpp"
 #include "core/error.hpp"
 #include "generation/fill.hpp"
+#include "generation/size_distribution.hpp"
+#include "io/atomic_write.hpp"
 #include "io/checkpoint.hpp"
 #include "io/file_seal.hpp"
 #include "io/output_paths.hpp"
@@ -76,6 +79,31 @@ void apply_cuts(const char* tool, Simulation& sim, const std::vector<CutSpec>& c
   }
 }
 
+// The size distribution asked against the radii of the random spheres drawn (the last `count`
+// particles), before settling and cuts: what the generator controls. Printed; returned for --sizes.
+std::vector<SizeCheck> report_sizes(const char* tool, const Simulation& sim, const GenerationSpec& g, std::string& title) {
+  const std::vector<double>& all = sim.particles.radius;
+  const std::vector<double> radii(all.end() - g.count, all.end());
+  const RadiusSampler sampler(g.size, g.radius_min, g.radius_max);
+  title = std::string(tool) + ": size distribution " + size_kind_name(g.size.kind) + ", " + std::to_string(g.count) + " random spheres";
+  std::printf("%s: asked, realised\n", title.c_str());
+  std::vector<SizeCheck> rows = size_report(sampler, radii);
+  for (const SizeCheck& c : rows) std::printf("%s:   %s: %.4g, %.4g\n", tool, c.what.c_str(), c.asked, c.realised);
+  return rows;
+}
+
+// --sizes: the same lines as a table; diameter_m is empty for the moment rows.
+void write_sizes_csv(const std::string& path, const std::string& title, const std::vector<SizeCheck>& rows) {
+  write_text_atomically(path, [&](std::ostream& out) {
+    out << "# " << title << " (docs/scene.md, [generation.size])\nquantity,diameter_m,asked,realised\n" << std::setprecision(10);
+    for (const SizeCheck& c : rows) {
+      out << c.what << ',';
+      if (c.diameter > 0) out << c.diameter;
+      out << ',' << c.asked << ',' << c.realised << '\n';
+    }
+  });
+}
+
 // The common end of gen-primary and copy-settle: time step, settle, cuts (gen-primary), checkpoint,
 // report.
 void settle_and_write(const char* tool, Simulation& sim, const SettleSpec& spec, const Scene& scene, const GenerateOptions& o,
@@ -97,7 +125,10 @@ void gen_primary(const GenerateOptions& o) {
   Simulation sim = simulation_from_scene(scene);
   std::mt19937_64 rng(scene.generation->seed);
   fill_random(sim, *scene.generation, rng);
+  std::string title;
+  const std::vector<SizeCheck> sizes = report_sizes("gen-primary", sim, *scene.generation, title);
   settle_and_write("gen-primary", sim, scene.generation->settle, scene, o, t0, scene.generation->cuts);
+  if (!o.sizes.empty()) write_sizes_csv(o.sizes, title, sizes);
 }
 
 void copy_settle(const GenerateOptions& o) {

@@ -9,6 +9,7 @@ struct GenerateOptions {
   std::string scene;
   std::string in;   // input checkpoint (copy-settle, compact)
   std::string out;  // output checkpoint
+  std::string sizes;  // gen-primary: CSV of the size distribution asked and drawn; empty: none
   bool quiet = false;
 };
 

@@ -55,11 +55,23 @@ struct CutSpec {
   bool inside = true;  // remove those inside (true) or outside (false) the region
 };
 
+// `[generation.size]`: how the random spheres' radii are drawn (generation/size_distribution.hpp).
+struct SizeSpec {
+  enum class Kind { Uniform, Normal, LogNormal, Sieve };
+  Kind kind = Kind::Uniform;         // uniform in radius on [radius_min, radius_max]: the default
+  double mean_radius = 0;            // Normal: mean of the untruncated radius distribution [m]
+  double std_radius = 0;             // Normal: its standard deviation [m]
+  double median_radius = 0;          // LogNormal: median of the untruncated radius distribution [m]
+  double geometric_std = 1;          // LogNormal: exp(standard deviation of ln r), > 1
+  std::vector<std::pair<double, double>> sieve;  // Sieve: (diameter [m], cumulative mass fraction passing)
+};
+
 struct GenerationSpec {
   Vec3 box_min, box_max;  // region to fill [m]
   int count = 0;          // random spheres, placed after `placed`
   std::vector<PlacedSphere> placed;  // ids 0..placed.size()-1, in file order
-  double radius_min = 0, radius_max = 0;  // [m], uniform in [min, max]
+  double radius_min = 0, radius_max = 0;  // [m]: the sizes' bounds (a sieve curve's first and last diameter / 2)
+  SizeSpec size;                          // how radii are drawn in [radius_min, radius_max]
   std::vector<std::pair<int, double>> material_fractions;  // material index, fraction (sum 1)
   std::uint64_t seed = 1;
   SettleSpec settle;
