@@ -3,7 +3,12 @@
 //                              contact-duration errors of a binary collision and the cost per
 //                              simulated second of a 10,000-sphere settling scene
 //   contact_bench variants     the price of each physics option on one packing: plain linear
-//                              contact, walls, adhesion law with bonds (liu, mendes), mixed laws
+//                              contact, walls, adhesion law with bonds (liu, mendes), mixed laws,
+//                              hertz, mindlin, rolling resistance
+//   contact_bench law-price LAWS  one contact model on a dense packing (8,000 spheres on a
+//                              periodic lattice, each pressed by six neighbours), 100 steps on one
+//                              thread: LAWS is normal[+tangential[+rolling]], e.g. hertz+mindlin+cdt.
+//                              Timing-independent under valgrind --tool=callgrind (instructions)
 // Prints markdown tables; bench/run_contact_bench.sh writes them to bench/results/contact.md.
 #include <omp.h>
 
@@ -12,9 +17,12 @@
 #include <cstdio>
 #include <cstring>
 #include <numbers>
+#include <random>
+#include <stdexcept>
 #include <string>
 
 #include "settle_scene.hpp"
+#include "contact/model_table.hpp"
 #include "forces/force_loop.hpp"
 #include "sim/simulation.hpp"
 
@@ -157,13 +165,72 @@ void variants() {
   }
 }
 
+// `hertz+mindlin+epsd2` -> its laws; throws on an unknown name.
+ModelChoice parse_laws(const std::string& text) {
+  ModelChoice m;
+  std::string rest = text;
+  auto next = [&] {
+    const std::size_t plus = rest.find('+');
+    std::string part = rest.substr(0, plus);
+    rest = plus == std::string::npos ? "" : rest.substr(plus + 1);
+    return part;
+  };
+  const auto need = [&](auto found, const std::string& what) {
+    if (!found) throw std::invalid_argument("unknown law \"" + what + "\"");
+    return *found;
+  };
+  std::string part = next();
+  m.normal = need(normal_law_named(part), part);
+  if (!rest.empty()) part = next(), m.tangential = need(tangential_law_named(part), part);
+  if (!rest.empty()) part = next(), m.rolling = need(rolling_law_named(part), part);
+  return m;
+}
+
+void law_price(const std::string& laws) {
+  const ModelChoice models = parse_laws(laws);
+  Material m = bead(0.5);
+  m.law = models.normal, m.tangential = models.tangential, m.rolling = models.rolling;
+  m.young_modulus = 5e8, m.poisson_ratio = 0.3, m.rolling_friction = 0.1;
+  Simulation sim;
+  sim.materials = MaterialTable({m}, {});
+  sim.params.gravity = Vec3::Zero();
+  constexpr int kSide = 20;
+  constexpr double kRadius = 1e-3, kSpacing = 0.999 * 2 * kRadius;  // every sphere pressed by six
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-1e-3, 1e-3);
+  Index id = 0;
+  for (int k = 0; k < kSide; ++k)
+    for (int j = 0; j < kSide; ++j)
+      for (int i = 0; i < kSide; ++i) {
+        sim.particles.add(id, kSpacing * Vec3(i + 0.5, j + 0.5, k + 0.5), kRadius, m.density, 0);
+        sim.particles.w[id] = Vec3(u(rng), u(rng), u(rng)) / kRadius;  // the rolling laws have work
+        sim.particles.v[id++] = Vec3(u(rng), u(rng), u(rng));
+      }
+  PeriodicBox box;
+  box.axis = {true, true, true};
+  box.hi = Vec3::Constant(kSpacing * kSide);
+  sim.set_periodic(box);
+  sim.dt = 0.1 * sim.critical_time_step();
+  omp_set_num_threads(1);
+  const int steps = 100;
+  const auto t0 = std::chrono::steady_clock::now();
+  for (int k = 0; k < steps; ++k) sim.advance();
+  std::printf("%s: force loop %s, %zu pair contacts, %.0f ns per particle-step (1 thread)\n", laws.c_str(),
+              variant_name(choose_force_variant(sim.materials, sim.has_bonds())).c_str(), active_count(sim.pair_contacts()),
+              1e9 * seconds_since(t0) / (steps * sim.particles.size()));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc == 3 && std::strcmp(argv[1], "law-price") == 0) {
+    law_price(argv[2]);
+    return 0;
+  }
   if (argc == 2 && std::strcmp(argv[1], "frac-sweep") == 0) frac_sweep();
   else if (argc == 2 && std::strcmp(argv[1], "variants") == 0) variants();
   else {
-    std::fprintf(stderr, "usage: contact_bench frac-sweep|variants\n");
+    std::fprintf(stderr, "usage: contact_bench frac-sweep|variants|law-price LAWS\n");
     return 2;
   }
   return 0;

@@ -20,6 +20,7 @@
 #include "core/block_times.hpp"
 #include "forces/force_loop.hpp"
 #include "simd/simd.hpp"
+#include "contact/model_table.hpp"
 #include "sim/simulation.hpp"
 
 #include "same_bits.hpp"
@@ -184,6 +185,54 @@ TEST(Determinism, StorageOrderAndThreadsChangeNoBit) {
             EXPECT_TRUE(same_bits(by_id(one, one.particles.w), by_id(s, s.particles.w))) << what;
             EXPECT_TRUE(same_bits(one.pair_contacts().spring, s.pair_contacts().spring)) << what;
           }
+  }
+  omp_set_num_threads(threads_before);
+}
+
+// The same with Hertz-Mindlin and rolling resistance (each contact's couple joins its torque in
+// key order): the pressed lattice with walls, shuffled and sorted, on one to three threads, and
+// with the plain loops in place of the four-wide sums, ends with the one-thread bits, the rolling
+// history included; and the couples do act (the spins differ from a run without rolling
+// resistance).
+TEST(Determinism, RollingResistanceChangesNoBitWithStorageOrThreads) {
+  const int threads_before = omp_get_max_threads();
+  auto by_id = [](const Simulation& s, const std::vector<Vec3>& field) {
+    std::vector<Vec3> out(field.size());
+    for (std::size_t k = 0; k < field.size(); ++k) out[s.particles.id[k]] = field[k];
+    return out;
+  };
+  for (const RollingLaw rolling : {RollingLaw::ConstantTorque, RollingLaw::ElasticPlastic}) {
+    auto run = [&](RollingLaw law, bool shuffled, int threads, bool four_wide = true) {
+      Simulation s = make_pressed_lattice(true);
+      Material m = glass().materials()[0];
+      m.law = NormalLaw::Hertz, m.tangential = TangentialLaw::Mindlin, m.rolling = law;
+      m.young_modulus = 1e7, m.poisson_ratio = 0.3, m.rolling_friction = 0.2;
+      s.materials = MaterialTable({m}, {});
+      s.dt = 0.1 * s.critical_time_step();
+      if (shuffled) shuffle_storage(s, 5);
+      s.params.sort_every = shuffled ? 7 : 0, s.params.sort_min_particles = 0;
+      s.params.load_block = 16;
+      omp_set_num_threads(threads);
+      set_simd_loops(four_wide && simd_loops_available());
+      for (int k = 0; k < 60; ++k) s.advance();
+      set_simd_loops(simd_loops_available());
+      return s;
+    };
+    const Simulation one = run(rolling, false, 1);
+    const Simulation plain = run(rolling, false, 1, false);
+    EXPECT_TRUE(same_bits(one.particles.w, plain.particles.w)) << "plain loops";
+    const Simulation without = run(RollingLaw::None, false, 1);
+    ASSERT_FALSE(same_bits(one.particles.w, without.particles.w)) << "the couples must act for the test to mean anything";
+    for (const bool shuffled : {false, true})
+      for (const int threads : {1, 2, 3}) {
+        if (!shuffled && threads == 1) continue;
+        const Simulation s = run(rolling, shuffled, threads);
+        const std::string what = std::string(rolling_law_name(rolling)) + (shuffled ? ", shuffled" : "") + ", " +
+                                 std::to_string(threads) + " threads";
+        EXPECT_TRUE(same_bits(by_id(one, one.particles.x), by_id(s, s.particles.x))) << what;
+        EXPECT_TRUE(same_bits(by_id(one, one.particles.w), by_id(s, s.particles.w))) << what;
+        EXPECT_TRUE(same_bits(one.pair_contacts().rolling, s.pair_contacts().rolling)) << what;
+      }
   }
   omp_set_num_threads(threads_before);
 }

@@ -49,9 +49,10 @@ struct ContactModel {
     // Tangential relative velocity at the contact point, eq. 2.12.
     const Triple<L> vt = (c.v_rel - vn * n) - cross(c.w_arm, n);
     LaneForce<L> f;
-    Tangential::force(p, c, vt, fn, bonded, c_t, dt, spring, f.tangential);
+    const L k_t = Tangential::stiffness_at(p, c);  // the tangential spring's, read by the rolling law too
+    Tangential::force(p, c, k_t, vt, fn, bonded, c_t, dt, spring, f.tangential);
     f.on_i = (-fn) * n + f.tangential;
-    f.couple = Rolling::couple(p, c, f_el, Tangential::stiffness_at(p, c), dt, rolling);
+    f.couple = Rolling::couple(p, c, f_el, k_t, dt, rolling);
     return f;
   }
   template <class L, class P, class M>

@@ -137,9 +137,9 @@ struct MixedTangential : TangentialSpring {
   static double dashpot(const PairParams& p, const LaneKinematics<double>& c) {
     return with_tangential_law(p, [&](auto law) { return decltype(law)::dashpot(p, c); });
   }
-  static void force(const PairParams& p, const LaneKinematics<double>& c, const lanes::Triple<double>& vt, double fn, bool bonded,
-                    double dashpot, double dt, lanes::Triple<double>& spring, lanes::Triple<double>& ft) {
-    with_tangential_law(p, [&](auto law) { decltype(law)::force(p, c, vt, fn, bonded, dashpot, dt, spring, ft); });
+  static void force(const PairParams& p, const LaneKinematics<double>& c, double k_t, const lanes::Triple<double>& vt, double fn,
+                    bool bonded, double dashpot, double dt, lanes::Triple<double>& spring, lanes::Triple<double>& ft) {
+    with_tangential_law(p, [&](auto law) { decltype(law)::force(p, c, k_t, vt, fn, bonded, dashpot, dt, spring, ft); });
   }
   static double stiffness_at(const PairParams& p, const LaneKinematics<double>& c) {
     return with_tangential_law(p, [&](auto law) { return decltype(law)::stiffness_at(p, c); });

@@ -8,7 +8,8 @@
 // A tangential sub-model has: `keyword`; `keys` (its scene keys, contact/properties.hpp);
 // `derive(p, properties)`; `in_tangent_plane(spring, n)` (its history turned into the current
 // tangent plane); `dashpot(p, c)` (its coefficient c_t for contact kinematics c);
-// `force(p, c, vt, fn, bonded, dashpot, dt, spring, ft)` (over a lane type);
+// `force(p, c, k_t, vt, fn, bonded, dashpot, dt, spring, ft)` (over a lane type; k_t its
+// stiffness_at this contact);
 // `stored_energy(p, spring, u, r_eff)`; `stiffness(p, scale)` (for eq. 2.48); `stiffness_at(p, c)` (its
 // stiffness at one contact, which a rolling law reads).
 #include <algorithm>
@@ -110,10 +111,10 @@ struct CoulombSpring : TangentialSpring {
     return L(p.kt);
   }
   template <class P, class L, class M>
-  [[gnu::always_inline]] static void force(const P& p, const LaneKinematics<L>& c, const lanes::Triple<L>& vt, const L& fn,
-                                           const M& bonded, const L& dashpot, double dt, lanes::Triple<L>& spring,
+  [[gnu::always_inline]] static void force(const P& p, const LaneKinematics<L>& /*c*/, const L& k_t, const lanes::Triple<L>& vt,
+                                           const L& fn, const M& bonded, const L& dashpot, double dt, lanes::Triple<L>& spring,
                                            lanes::Triple<L>& ft) {
-    step(p, stiffness_at(p, c), vt, fn, bonded, dashpot, dt, spring, ft);
+    step(p, k_t, vt, fn, bonded, dashpot, dt, spring, ft);
   }
   // The energy held in the spring: |s|^2 / (2 kt) [J].
   static double stored_energy(const PairParams& p, const Vec3& spring, double /*u*/, double /*r_eff*/) {
@@ -160,8 +161,8 @@ struct MindlinSpring : TangentialSpring {
     return p.mindlin_modulus * contact_radius(c);
   }
   template <class P, class L, class M>
-  [[gnu::always_inline]] static void force(const P& p, const LaneKinematics<L>& c, const lanes::Triple<L>& vt, const L& fn,
-                                           const M& bonded, const L& dashpot, double dt, lanes::Triple<L>& spring,
+  [[gnu::always_inline]] static void force(const P& p, const LaneKinematics<L>& c, const L& k_t, const lanes::Triple<L>& vt,
+                                           const L& fn, const M& bonded, const L& dashpot, double dt, lanes::Triple<L>& spring,
                                            lanes::Triple<L>& ft) {
     using namespace lanes;
     // Unloading (eq. H11): u_old = u + v_n dt > u scales the spring by a / a_old = sqrt(u / u_old).
@@ -169,7 +170,7 @@ struct MindlinSpring : TangentialSpring {
     const L u = only_where(less(zero, c.overlap), c.overlap);
     const L u_old = u + dot(c.v_rel, c.n) * L(dt);
     spring = select(less(u, u_old), spring * root(u / u_old), spring);
-    step(p, stiffness_at(p, c), vt, fn, bonded, dashpot, dt, spring, ft);
+    step(p, k_t, vt, fn, bonded, dashpot, dt, spring, ft);
   }
   // |s|^2 / (2 k_t(u)) [J]: the energy of the spring at the current stiffness.
   static double stored_energy(const PairParams& p, const Vec3& spring, double u, double r_eff) {

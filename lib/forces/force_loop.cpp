@@ -198,21 +198,32 @@ double wall_run(const ForceLoopInput& in, ContactList& wc, ForceBlocks& out, lon
 // was rebuilt, does not either. Four-wide with AVX2 (a contact's force and torque one masked load
 // each, a particle's loads one aligned store each), else one by one: the same additions, so the
 // same bits.
-void sum_pair_contacts_plain(const ForceBlocks& out, const ContactSum* sum, const double* radius, long lo, long hi) {
+// With couples (rolling resistance): each contact's couple joins its torque, M on i, -M on j
+// (eq. R1).
+template <bool Couples>
+void sum_pair_contacts_plain(const ForceBlocks& out, const ContactSum* sum, const Vec3* couple, const double* radius, long lo,
+                             long hi) {
   for (long i = lo; i < hi; ++i) {
     Vec3 force = Vec3::Zero(), torque = Vec3::Zero();
     for (int e = out.by_key_start[i]; e < out.by_key_start[i + 1]; ++e) {
       const unsigned code = static_cast<unsigned>(out.by_key[e]);
       const ContactSum& c = sum[code >> 1];
       force += (code & 1) ? Vec3(-c.force) : c.force;  // eq. 2.31-2.32
-      torque += radius[i] * c.torque_per_radius;       // eq. 2.33-2.34
+      if constexpr (Couples) {
+        const Vec3& m = couple[code >> 1];
+        torque += radius[i] * c.torque_per_radius + ((code & 1) ? Vec3(-m) : m);
+      } else {
+        torque += radius[i] * c.torque_per_radius;  // eq. 2.33-2.34
+      }
     }
     out.force[i].v = force;
     out.torque[i].v = torque;
   }
 }
 #ifdef DEM_SIMD_LOOPS
-DEM_AVX2 void sum_pair_contacts_avx2(const ForceBlocks& out, const ContactSum* sum, const double* radius, long lo, long hi) {
+template <bool Couples>
+DEM_AVX2 void sum_pair_contacts_avx2(const ForceBlocks& out, const ContactSum* sum, const Vec3* couple, const double* radius, long lo,
+                                     long hi) {
   using lanes::Lanes4;
   const int* const by_key = out.by_key.data();
   const int* const start = out.by_key_start.data();
@@ -223,32 +234,20 @@ DEM_AVX2 void sum_pair_contacts_avx2(const ForceBlocks& out, const ContactSum* s
       const unsigned code = static_cast<unsigned>(by_key[e]);
       const double* c = sum[code >> 1].force.data();
       f = f + simd::flip_sign_if(code & 1, simd::load_xyz(c));
-      t = t + r * simd::load_xyz(c + 3);
+      if constexpr (Couples) t = t + (r * simd::load_xyz(c + 3) + simd::flip_sign_if(code & 1, simd::load_xyz(couple[code >> 1].data())));
+      else t = t + r * simd::load_xyz(c + 3);
     }
     simd::store_aligned(out.force[i].v.data(), f);  // a LoadSum's fourth double is never read
     simd::store_aligned(out.torque[i].v.data(), t);
   }
 }
 #endif
-// The rolling couples of particles [lo, hi) added to their torques, each particle's in the order of
-// its contacts' keys: M on i, -M on j (eq. R1). After the other contact loads, so a scene
-// without rolling resistance sums exactly as before.
-void add_pair_couples(const ForceBlocks& out, const Vec3* couple, long lo, long hi) {
-  for (long i = lo; i < hi; ++i) {
-    Vec3 torque = Vec3::Zero();
-    for (int e = out.by_key_start[i]; e < out.by_key_start[i + 1]; ++e) {
-      const unsigned code = static_cast<unsigned>(out.by_key[e]);
-      torque += (code & 1) ? Vec3(-couple[code >> 1]) : couple[code >> 1];
-    }
-    out.torque[i].v += torque;
-  }
-}
-
-void sum_pair_contacts(const ForceBlocks& out, const ContactSum* sum, const double* radius, long lo, long hi) {
+template <bool Couples>
+void sum_pair_contacts(const ForceBlocks& out, const ContactSum* sum, const Vec3* couple, const double* radius, long lo, long hi) {
 #ifdef DEM_SIMD_LOOPS
-  if (out.simd) return sum_pair_contacts_avx2(out, sum, radius, lo, hi);
+  if (out.simd) return sum_pair_contacts_avx2<Couples>(out, sum, couple, radius, lo, hi);
 #endif
-  sum_pair_contacts_plain(out, sum, radius, lo, hi);
+  sum_pair_contacts_plain<Couples>(out, sum, couple, radius, lo, hi);
 }
 
 // The net loads of block b's particles (ForceBlocks): each one's pair contacts in key order, then
@@ -259,8 +258,7 @@ double finish_block(const ForceLoopInput& in, const ContactList& pc, ContactList
                     WallScratch& scratch) {
   const Particles& p = in.particles;
   const long lo = b * out.block, hi = std::min(static_cast<long>(p.size()), lo + out.block);
-  sum_pair_contacts(out, pc.sum.data(), p.radius.data(), lo, hi);
-  if constexpr (Model::has_rolling) add_pair_couples(out, pc.rolling.data(), lo, hi);
+  sum_pair_contacts<Model::has_rolling>(out, pc.sum.data(), pc.rolling.data(), p.radius.data(), lo, hi);
   double worst = 0;
   for (int q = in.wall_block_first[b]; q < in.wall_block_first[b + 1]; ++q)
     worst = std::max(worst, wall_run<Model>(in, wc, out, in.wall_run_order[q], scratch));
