@@ -381,7 +381,40 @@ void select_wall_contacts(const Vec3* to_wall, const std::uint8_t* touching, int
   }
 }
 
-ForceVariant choose_force_variant(const MaterialTable& materials, bool any_bonds) { return materials.common_models(any_bonds); }
+namespace {
+
+// The combinations compiled as a force loop of their own (each one a full instantiation: compile
+// time and code size); any other runs the per-contact choice ("mixed"). Every hertz combination;
+// cundall with the linear spring and any rolling law; the bonded laws as the thesis has them.
+template <class Normal, class Tangential, class Rolling>
+constexpr bool kCompiled =
+    std::is_same_v<Normal, HertzNormal> ||
+    (std::is_same_v<Tangential, CoulombSpring> && (std::is_same_v<Normal, CundallNormal> || std::is_same_v<Rolling, NoRolling>));
+
+// f(ContactModel<...>{}) for the models of `m` where compiled, f(the mixed model{}) otherwise.
+template <class F>
+decltype(auto) with_compiled_model(ModelChoice m, F&& f) {
+  return with_normal_law(m.normal, [&](auto normal) {
+    return with_tangential_law(m.tangential, [&](auto tangential) {
+      return with_rolling_law(m.rolling, [&](auto rolling) {
+        using N = std::remove_cvref_t<decltype(normal)>;
+        using T = std::remove_cvref_t<decltype(tangential)>;
+        using R = std::remove_cvref_t<decltype(rolling)>;
+        if constexpr (kCompiled<N, T, R>) return f(ContactModel<N, T, R>{});
+        else return f(ContactModel<MixedNormal, MixedTangential, MixedRolling>{});
+      });
+    });
+  });
+}
+
+}  // namespace
+
+ForceVariant choose_force_variant(const MaterialTable& materials, bool any_bonds) {
+  const std::optional<ModelChoice> m = materials.common_models(any_bonds);
+  if (!m) return std::nullopt;
+  const bool compiled = with_compiled_model(*m, [](auto model) { return !std::is_same_v<typename decltype(model)::NormalModel, MixedNormal>; });
+  return compiled ? m : std::nullopt;
+}
 
 std::string variant_name(ForceVariant v) {
   if (!v) return "mixed";
@@ -394,13 +427,7 @@ std::string variant_name(ForceVariant v) {
 double compute_contact_forces(const ForceLoopInput& in, ForceVariant variant, ContactList& pairs, ContactList& walls,
                               ForceBlocks& loads) {
   if (!variant) return all_forces<ContactModel<MixedNormal, MixedTangential, MixedRolling>>(in, pairs, walls, loads);
-  return with_normal_law(variant->normal, [&](auto normal) {
-    return with_tangential_law(variant->tangential, [&](auto tangential) {
-      return with_rolling_law(variant->rolling, [&](auto rolling) {
-        return all_forces<ContactModel<decltype(normal), decltype(tangential), decltype(rolling)>>(in, pairs, walls, loads);
-      });
-    });
-  });
+  return with_compiled_model(*variant, [&](auto model) { return all_forces<decltype(model)>(in, pairs, walls, loads); });
 }
 
 }  // namespace dem

@@ -71,7 +71,8 @@ void set_lagging_thread_for_tests(int thread, int microseconds);
 
 // Which instantiation of the force loop runs: the sub-models every pair shares
 // (contact/model_table.hpp; while no contact is bonded, the normal law each acts as then: liu and
-// mendes act exactly as cundall), or none: the laws chosen per contact ("mixed").
+// mendes act exactly as cundall) where that combination is compiled (force_loop.cpp, kCompiled),
+// or none: the laws chosen per contact ("mixed").
 using ForceVariant = std::optional<ModelChoice>;
 ForceVariant choose_force_variant(const MaterialTable& materials, bool any_bonds);
 std::string variant_name(ForceVariant v);
