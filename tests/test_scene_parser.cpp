@@ -186,6 +186,8 @@ std::vector<BadCase> bad_cases() {
        {"simulation.time_step", "out of range"}},
       {"frac above one", replace(kValid, "gravity = [0.0, 0.0, -9.81]", "gravity = [0.0, 0.0, -9.81]\nfrac = 2.0"),
        {"simulation.frac = 2", "(0, 1]"}},
+      {"frac above 0.2, not forced", replace(kValid, "gravity = [0.0, 0.0, -9.81]", "gravity = [0.0, 0.0, -9.81]\nfrac = 0.9"),
+       {"scene.toml:3:8: simulation.frac = 0.9", "above 0.2", "results are wrong", "simulation.force_time_step = true"}},
       {"negative duration", replace(kValid, "duration = 0.1", "duration = -0.1"), {"stage[0].duration = -0.1", "out of range", " s"}},
       {"motion of an unknown wall", replace(kValid, "wall = \"box\"", "wall = \"lid\""),
        {"stage[0].motion[0].wall = \"lid\"", "no wall or wall group"}},
@@ -322,6 +324,54 @@ std::vector<BadCase> bad_cases() {
 }
 
 INSTANTIATE_TEST_SUITE_P(BadInputs, SceneRejects, ::testing::ValuesIn(bad_cases()));
+
+// Implausible values (docs/scene.md, "Warnings") are accepted with a warning that names the place,
+// the value and the likely unit; a plausible scene has none.
+struct WarnCase {
+  const char* what;
+  std::string text;
+  std::vector<std::string> expect;  // fragments of the one warning
+};
+
+TEST(SceneWarnings, PlausibleSceneHasNone) { EXPECT_TRUE(parse_scene(kValid, "scene.toml").warnings.empty()); }
+
+TEST(SceneWarnings, ImplausibleValuesWarnWithTheLikelyUnit) {
+  const std::string sim = "gravity = [0.0, 0.0, -9.81]";
+  const std::vector<WarnCase> cases = {
+      {"density in g/cm^3", replace(kValid, "density = 2500.0", "density = 2.5"),
+       {"scene.toml:6:11: material[0].density = 2.5", "density 2.5 kg/m^3", "is it in g/cm^3? (kg/m^3 expected"}},
+      {"density too high", replace(kValid, "density = 2500.0", "density = 2.5e6"), {"material[0].density", "denser than any solid"}},
+      {"kn in kN/m", replace(kValid, "kn = 5.0e4", "kn = 0.05"), {"material[0].kn = 0.05", "is it in kN/m"}},
+      {"E in GPa", replace(kValid, "kn = 5.0e4", "law = \"hertz\"\nyoung_modulus = 70.0\npoisson_ratio = 0.25\nkt = 4.0e4"),
+       {"material[0].young_modulus = 70", "is it in GPa"}},
+      {"gravity in mm/s^2", replace(kValid, sim, "gravity = [0.0, 0.0, -9810.0]"), {"simulation.gravity", "|g| = 9810", "mm/s^2"}},
+      {"gravity in g", replace(kValid, sim, "gravity = [0.0, 0.0, -1.0e-3]"), {"simulation.gravity", "units of g"}},
+      {"walls in mm", replace(kValid, "max = [0.02, 0.02, 0.05]", "max = [20.0, 20.0, 500.0]"),
+       {"wall[0].type = \"box\"", "spans 500 m", "lengths in mm? (m expected)"}},
+      {"generation box in mm", replace(replace(kValid, "box_max = [0.02, 0.02, 0.05]", "box_max = [20.0, 20.0, 500.0]"), "radius_max = 0.002",
+                                       "radius_max = 0.002"),
+       {"generation.box_max", "the generation box spans 500 m", "lengths in mm?"}},
+      {"radii in mm", replace(replace(replace(kValid, "box_max = [0.02, 0.02, 0.05]", "box_max = [20.0, 20.0, 50.0]"), "radius_max = 0.002", "radius_max = 2.0"),
+                              "max = [0.02, 0.02, 0.05]", "max = [20.0, 20.0, 50.0]"),
+       {"generation.radius_max = 2", "radius up to 2 m", "lengths in mm?"}},
+      {"amplitude in mm", replace(kValid, "acceleration = 29.43", "amplitude = 2.0"),
+       {"stage[0].motion[0].amplitude = 2", "peak acceleration", "amplitude in mm? (m expected)"}},
+      {"frac above 0.2, forced", replace(kValid, sim, sim + "\nfrac = 0.9\nforce_time_step = true"),
+       {"simulation.frac = 0.9", "forced (simulation.force_time_step = true)", "results are wrong"}},
+  };
+  for (const WarnCase& c : cases) {
+    const Scene sc = parse_scene(c.text, "scene.toml");
+    bool found = false;
+    for (const std::string& w : sc.warnings) {
+      bool all = true;
+      for (const std::string& f : c.expect) all = all && w.find(f) != std::string::npos;
+      found = found || all;
+    }
+    std::string got;
+    for (const std::string& w : sc.warnings) got += "\n  " + w;
+    EXPECT_TRUE(found) << c.what << ": no warning with every fragment; warnings:" << got;
+  }
+}
 
 }  // namespace
 }  // namespace dem

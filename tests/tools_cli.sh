@@ -65,12 +65,37 @@ check "checkpoint kept after an energy gain" 0 "" -- "$bin/post-macro" --referen
 # NaN/Inf: a gravity of 1e308 m/s^2 overflows the velocity (the energy sums overflow first and
 # are skipped: inf - inf is no excess); the non-finite check names the step and the particle.
 sed -e 's/^gravity = .*/gravity = [0.0, 0.0, -1.0e308]/' "$data/energy_drop.toml" > "$tmp/overflow.toml"
-check "non-finite state diagnosed" 5 "unstable simulation: non-finite state at step [0-9]* .* for particle id 0; check the time step" -- \
+check "non-finite state diagnosed" 5 "unstable simulation: non-finite state at step [0-9]* .* for particle id 0, with dt = .*: check the time step" -- \
   "$bin/run-stage" --scene "$tmp/overflow.toml" --stage drop --in "$tmp/drop0.h5" --out "$tmp/drop3.h5" --quiet
 [ -e "$tmp/drop3.h5" ] && { echo "FAIL output written after a non-finite state"; fail=1; }
 sed 's/^force_time_step = true/force_time_step = true\nmax_energy_gain = 0/' "$data/energy_drop.toml" > "$tmp/drop_nocheck.toml"
 check "energy check off: overlap stops it later" 5 "overlap of .* between particle 0 and wall floor.zmin" -- \
   "$bin/run-stage" --scene "$tmp/drop_nocheck.toml" --stage drop --in "$tmp/drop0.h5" --out "$tmp/drop2.h5" --quiet
+
+# Implausible values (docs/scene.md, "Warnings"): a warning with the place, the value and the likely
+# unit, and the run goes on (exit 0); FRAC above 0.2 gives wrong results and is refused unless forced.
+sed 's/^density = 2500.0/density = 2.5/' "$data/small.toml" > "$tmp/gcm3.toml"
+check "density in g/cm^3 warns and runs" 0 "gen-primary: warning: .*gcm3.toml:8:11: material\[0\].density = 2.5: density 2.5 kg/m^3, outside \[100, 25000\] kg/m^3 of granular solids: is it in g/cm^3? (kg/m^3 expected" -- \
+  "$bin/gen-primary" --scene "$tmp/gcm3.toml" --out "$tmp/gcm3.h5" --quiet
+sed 's/^frac = 0.1/frac = 0.9/' "$data/small.toml" > "$tmp/frac.toml"
+check "frac above 0.2 refused" 3 "frac.toml:3:8: simulation.frac = 0.9: above 0.2 a contact lasts fewer than 8 steps and the results are wrong .* or set simulation.force_time_step = true" -- \
+  "$bin/gen-primary" --scene "$tmp/frac.toml" --out "$tmp/frac.h5"
+[ -e "$tmp/frac.h5" ] && { echo "FAIL output written after a refused frac"; fail=1; }
+# Blow-ups name the likely cause, found at step 0, before the time step: a generation box wider than
+# the walls (spheres placed across them) and a vibration amplitude given in mm (2 m at 20 Hz).
+sed 's/^box_min = .*/box_min = [-0.01, -0.01, 0.0]/; s/^box_max = .*/box_max = [0.03, 0.03, 0.05]/' "$data/small.toml" > "$tmp/widebox.toml"
+check "generation box across the walls diagnosed" 5 "unstable simulation: overlap of .* Likely causes, most likely first (checked at step 0): (1) the generation box \[-0.01, -0.01, 0\] to \[0.03, 0.03, 0.05\] m is not inside the walls: wall \"box\" (4 elements) crosses it .*(2) otherwise the time step or the stiffness: lower the time step" -- \
+  "$bin/gen-primary" --scene "$tmp/widebox.toml" --out "$tmp/widebox.h5" --quiet
+grep -q "gen-primary: warning: the generation box" "$tmp/out" || { echo "FAIL no warning before the run for the generation box"; fail=1; }
+sed 's/^acceleration = 29.43/amplitude = 2.0/' "$data/small.toml" > "$tmp/mm.toml"
+check "vibration amplitude in mm diagnosed" 5 "unstable simulation: .* Likely causes, most likely first (checked at step 0): (1) wall \"box\" moves faster than the particles can follow: peak speed 251.3.* m/s (vibration amplitude 2 m x 2 pi x 20 Hz), peak acceleration 3219.* g; it moves .* of the smallest radius .* vibration amplitude in mm? (m expected)" -- \
+  "$bin/run-stage" --scene "$tmp/mm.toml" --stage shake --in "$tmp/a.h5" --out "$tmp/mm.h5" --quiet
+grep -q "run-stage: warning: wall \"box\" moves faster than the particles can follow" "$tmp/out" || { echo "FAIL no warning before the run for the fast wall"; fail=1; }
+grep -q "run-stage: warning: .*stage\[0\].motion\[0\].amplitude = 2: .*amplitude in mm" "$tmp/out" || { echo "FAIL no scene warning for the amplitude"; fail=1; }
+[ -e "$tmp/mm.h5" ] && { echo "FAIL output written after a blow-up"; fail=1; }
+# A plausible scene runs without a warning.
+"$bin/run-stage" --scene "$data/small.toml" --stage shake --in "$tmp/a.h5" --out "$tmp/ok.h5" --quiet > "$tmp/out" 2>&1
+grep -q "warning" "$tmp/out" && { echo "FAIL warnings for a plausible scene:"; cat "$tmp/out"; fail=1; } || echo "ok   no warning for a plausible scene"
 
 # A full disk (here a file-size limit): the write fails with exit 4 and the previous output stays intact.
 "$bin/run-stage" --scene "$data/small.toml" --stage shake --in "$tmp/a.h5" --out "$tmp/full.h5" --quiet 2> /dev/null

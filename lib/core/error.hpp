@@ -17,9 +17,13 @@ struct InputError : Error {
 struct IoError : Error {
   using Error::Error;
 };
-// The simulation became unphysical (NaN/Inf, runaway overlap).
+// The simulation became unphysical (NaN/Inf, runaway overlap). With two parts, what() is
+// "facts: advice": the advice is the generic remedy (time step, stiffness), which the run layer
+// lists after the causes its start checks found likelier (run/start_checks.hpp).
 struct PhysicsError : Error {
   using Error::Error;
+  PhysicsError(const std::string& facts_, const std::string& advice_) : Error(facts_ + ": " + advice_), facts(facts_), advice(advice_) {}
+  std::string facts, advice;  // empty when built from one message
 };
 
 // The run was stopped by a signal (Ctrl-C, SIGTERM) between steps; the message says what was saved

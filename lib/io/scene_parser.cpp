@@ -33,6 +33,28 @@ std::string quoted_list(const std::vector<std::string>& names) {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+// The plausibility warnings of the scene being parsed (parse_scene sets it): TableReader::warn adds
+// to it from any nested reader.
+thread_local std::vector<std::string>* warnings_out = nullptr;
+
+// The ranges a granular scene has (docs/scene.md, "Warnings"). A value outside them is accepted
+// with a warning that names the likely cause, almost always a unit.
+constexpr double kDensityLo = 100, kDensityHi = 25000;       // kg/m^3: light polymers .. osmium (22,590)
+constexpr double kRadiusHi = 1;                              // m: a particle's radius
+constexpr double kExtentHi = 100;                            // m: generation box, a wall, a period
+constexpr double kStiffnessLo = 1, kStiffnessHi = 1e12;      // N/m: kn, kt
+constexpr double kModulusLo = 1e5, kModulusHi = 1.2e12;      // Pa: soft rubber .. diamond
+constexpr double kGravityLo = 1, kGravityHi = 30;            // m/s^2 (or 0): the Moon's 1.62 .. Jupiter's 24.8
+constexpr double kAmplitudeHi = 0.1;                         // m: a vibration's amplitude
+constexpr double kVibrationHi = 100 * 9.81;                  // m/s^2: a vibration's peak acceleration, 100 g
+constexpr double kFracHi = 0.2;                              // FRAC above it gives wrong results (README)
+
+std::string num(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
 std::string show(const toml::node& n) {
   std::ostringstream s;
   if (n.is_string()) s << '"' << *n.value<std::string>() << '"';
@@ -73,6 +95,17 @@ class TableReader {
     throw InputError(s.str());
   }
   [[noreturn]] void fail(const std::string& key, const std::string& msg) const { fail_at(t_.get(key), key, msg); }
+  // A plausibility warning, formatted as fail_at's message; kept in Scene::warnings.
+  void warn_at(const toml::node* n, const std::string& key, const std::string& msg) const {
+    if (!warnings_out) return;
+    std::ostringstream s;
+    const toml::source_region& src = n ? n->source() : t_.source();
+    s << file_ << ':' << src.begin.line << ':' << src.begin.column << ": " << name(key);
+    if (n) s << " = " << show(*n);
+    s << ": " << msg;
+    warnings_out->push_back(s.str());
+  }
+  void warn(const std::string& key, const std::string& msg) const { warn_at(t_.get(key), key, msg); }
 
   std::string name(const std::string& key) const { return where_.empty() ? key : where_ + "." + key; }
   bool has(const std::string& key) {
@@ -243,6 +276,32 @@ SettleSpec read_settle(TableReader& parent, const std::string& key) {
   return s;
 }
 
+// FRAC above 0.2 resolves a contact in fewer than 8 steps: the restitution comes out 10 to 100 %
+// off and the contact time up to twice too long (README, "Which FRAC buys which accuracy";
+// bench/results/contact.md). Refused unless forced.
+void check_frac(TableReader& r, const SimulationSpec& s) {
+  if (s.time_step > 0 || s.frac <= kFracHi) return;  // a given time_step: choose_time_step checks it
+  const std::string why = "above " + num(kFracHi) +
+                          " a contact lasts fewer than 8 steps and the results are wrong (restitution 10 to 100 % off, contact time up "
+                          "to 2x; README \"Which FRAC buys which accuracy\", bench/results/contact.md)";
+  if (!s.force_time_step)
+    r.fail("frac", why + "; take frac <= " + num(kFracHi) + " (default 0.1; 0.01 for 1 % on the restitution), or set "
+                         "simulation.force_time_step = true to run with it anyway");
+  r.warn("frac", "forced (simulation.force_time_step = true): " + why);
+}
+
+// |g| is 0 or near Earth's 9.81 m/s^2 in a granular scene; far from that, a unit is likely wrong.
+void check_gravity(TableReader& r, const Vec3& g) {
+  const double a = g.norm();
+  if (a == 0 || (a >= kGravityLo && a <= kGravityHi)) return;
+  std::string cause = "check the unit (m/s^2 expected)";
+  if (a < kGravityLo) cause = "is it in units of g? (m/s^2 expected: 1 g = 9.81 m/s^2)";
+  else if (std::abs(a / 981 - 1) < 0.05) cause = "is it in cm/s^2? (m/s^2 expected)";
+  else if (std::abs(a / 9810 - 1) < 0.05) cause = "is it in mm/s^2, lengths in mm? (m/s^2 expected)";
+  r.warn("gravity", "|g| = " + num(a) + " m/s^2, outside 0 and [" + num(kGravityLo) + ", " + num(kGravityHi) +
+                        "] m/s^2 (the Moon's 1.62 to Jupiter's 24.8; Earth's 9.81): " + cause);
+}
+
 void read_simulation(TableReader& top, Scene& sc) {
   const toml::table* t = top.subtable("simulation");
   if (!t) return;
@@ -276,7 +335,13 @@ void read_simulation(TableReader& top, Scene& sc) {
     }
     pr.finish();
     if (!s.periodic.any()) r.fail("periodic", "give the period along at least one axis, e.g. { x = [0.0, 0.04] }");
+    for (int d = 0; d < 3; ++d)
+      if (s.periodic.axis[d] && s.periodic.hi[d] - s.periodic.lo[d] > kExtentHi)
+        pr.warn(std::string(1, "xyz"[d]), "a period of " + num(s.periodic.hi[d] - s.periodic.lo[d]) + " m, above the " + num(kExtentHi) +
+                                               " m of a granular scene: lengths in mm? (m expected)");
   }
+  check_frac(r, s);
+  check_gravity(r, s.gravity);
   r.finish();
 }
 
@@ -307,6 +372,25 @@ double read_property(TableReader& r, const PropertyKey& k, ContactProperties& in
 
 bool reads_key(const std::vector<PropertyKey>& keys, std::string_view keyword) {
   return std::any_of(keys.begin(), keys.end(), [&](const PropertyKey& o) { return o.keyword == keyword; });
+}
+
+// Plausibility of the stiffnesses and moduli given in one table (docs/scene.md, "Warnings").
+void check_properties(TableReader& r, const std::vector<PropertyKey>& keys, const ContactProperties& c) {
+  for (const PropertyKey& k : keys) {
+    const std::string key(k.keyword);
+    if (k.flag || !r.node(key)) continue;
+    const double v = c.*k.number;
+    if (key == "kn" || key == "kt") {
+      if (v >= kStiffnessLo && v <= kStiffnessHi) continue;
+      r.warn(key, key + " = " + num(v) + " N/m, outside [" + num(kStiffnessLo) + ", " + num(kStiffnessHi) + "] N/m of granular contacts: " +
+                      (v < kStiffnessLo ? "is it in kN/m or MN/m? (N/m expected)" : "check the unit (N/m expected)"));
+    } else if (key == "young_modulus") {
+      if (v >= kModulusLo && v <= kModulusHi) continue;
+      std::string cause = "stiffer than diamond (1.2e12 Pa): check the unit (Pa expected)";
+      if (v < kModulusLo) cause = v * 1e9 <= kModulusHi ? "is it in GPa or MPa? (Pa expected: 70 GPa = 7e10 Pa)" : "is it in MPa? (Pa expected)";
+      r.warn(key, "E = " + num(v) + " Pa, outside [" + num(kModulusLo) + ", " + num(kModulusHi) + "] Pa (soft rubber to diamond): " + cause);
+    }
+  }
 }
 
 // A key that only other laws' models read is an error that says whose it is.
@@ -359,6 +443,7 @@ void read_pairs(TableReader& top, Scene& sc) {
         r.fail(std::string(k.keyword), "a property of each material, which the law combines itself: give it in the [[material]]");
       o.set(k.keyword, read_property(r, k, o.values));
     }
+    check_properties(r, keys, o.values);
     r.finish();
     sc.pairs.push_back(o);
   }
@@ -415,6 +500,12 @@ void read_materials(TableReader& top, Scene& sc) {
       else if (k.required || !k.default_key.empty()) r.required(key);
       else m.*k.number = k.default_value;
     }
+    if (m.density < kDensityLo || m.density > kDensityHi)
+      r.warn("density", "density " + num(m.density) + " kg/m^3, outside [" + num(kDensityLo) + ", " + num(kDensityHi) +
+                            "] kg/m^3 of granular solids: " +
+                            (m.density < kDensityLo ? "is it in g/cm^3? (kg/m^3 expected: 2.5 g/cm^3 = 2500 kg/m^3)"
+                                                    : "denser than any solid (osmium: 22590 kg/m^3): check the unit (kg/m^3 expected)"));
+    check_properties(r, keys, m);
     r.finish();
     sc.materials.push_back(m);
   }
@@ -611,6 +702,7 @@ void read_walls(TableReader& top, Scene& sc) {
     if (const auto it = names.find(name); it != names.end())
       r.fail("name", "duplicate wall name \"" + name + "\" (also " + indexed("wall", it->second) + ")");
     names.emplace(name, k);
+    const std::size_t first_element = sc.walls.size();
     const int mat = material_ref(r, "material", sc.materials);
     const std::string type = r.choice("type", {"polygon", "box", "rectangle", "cylinder", "disc", "cone", "helix", "stl"});
     if (type == "polygon") {
@@ -654,6 +746,12 @@ void read_walls(TableReader& top, Scene& sc) {
       }
       add_mesh(r, sc, name, mat, std::move(mesh), type == "stl" ? "file" : "type");
     }
+    Vec3 lo = Vec3::Constant(kInf), hi = -lo;
+    for (std::size_t e = first_element; e < sc.walls.size(); ++e)
+      for (const Vec3& v : sc.walls[e].vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+    if (sc.walls.size() > first_element && (hi - lo).maxCoeff() > kExtentHi)
+      r.warn("type", "wall \"" + name + "\" spans " + num((hi - lo).maxCoeff()) + " m, above the " + num(kExtentHi) +
+                         " m of a granular scene: lengths in mm? (m expected" + (type == "stl" ? "; scale = 0.001 reads a file in mm)" : ")"));
     r.finish();
   }
 }
@@ -668,6 +766,8 @@ std::vector<PlacedSphere> read_placed(TableReader& gen, const Scene& sc, const G
     PlacedSphere s;
     s.centre = r.vec3("centre");
     s.radius = r.number("radius", 0, kInf, "m", true);
+    if (s.radius > kRadiusHi)
+      r.warn("radius", "radius " + num(s.radius) + " m, above the " + num(kRadiusHi) + " m of a granular particle: lengths in mm? (m expected)");
     const std::string mat = r.string("material");
     s.material = find_material(sc.materials, mat);
     if (s.material < 0) r.fail("material", "no material of that name");
@@ -807,9 +907,15 @@ void read_generation(TableReader& top, Scene& sc) {
     if (period.axis[d] && (g.box_min[d] < period.lo[d] || g.box_max[d] > period.hi[d]))
       r.fail("box_max", std::string("along the periodic axis ") + "xyz"[d] +
                             " the generation box must lie within simulation.periodic (spheres placed across the boundary could overlap)");
+  if ((g.box_max - g.box_min).maxCoeff() > kExtentHi)
+    r.warn("box_max", "the generation box spans " + num((g.box_max - g.box_min).maxCoeff()) + " m, above the " + num(kExtentHi) +
+                          " m of a granular scene: lengths in mm? (m expected)");
   g.count = static_cast<int>(r.integer("count", 0, 100000000));
   g.size = read_size(r);
   read_radius_bounds(r, g);
+  if (g.radius_max > kRadiusHi)
+    r.warn(g.size.kind == SizeSpec::Kind::Sieve ? "size" : "radius_max",
+           "spheres of radius up to " + num(g.radius_max) + " m, above the " + num(kRadiusHi) + " m of a granular particle: lengths in mm? (m expected)");
   g.seed = static_cast<std::uint64_t>(r.integer_or("seed", 1, 0, std::numeric_limits<long>::max()));
   const toml::node& mn = r.required("materials");
   const toml::table* mt = mn.as_table();
@@ -980,6 +1086,13 @@ void read_motion(TableReader& r, MotionSpec& ms) {
       const double w = 2 * M_PI * m.frequency;
       m.amplitude = r.number("acceleration", 0, kInf, "m/s^2", true) / (w * w);
     }
+    // A vibration table or shaker moves by mm to cm at 1 to 20 g; beyond, the amplitude's unit is likely wrong.
+    const double w = 2 * M_PI * m.frequency, peak = m.amplitude * w * w;
+    if (m.amplitude > kAmplitudeHi || peak > kVibrationHi)
+      r.warn(amp ? "amplitude" : "acceleration",
+             "amplitude " + num(m.amplitude) + " m at " + num(m.frequency) + " Hz: peak speed " + num(m.amplitude * w) + " m/s, peak acceleration " +
+                 num(peak / 9.81) + " g (a granular vibration: amplitude below " + num(kAmplitudeHi) + " m, below " + num(kVibrationHi / 9.81) +
+                 " g): " + (amp ? "amplitude in mm? (m expected)" : "check the unit and the frequency (m/s^2 and Hz expected)"));
   } else if (type == "rotate") {
     ms.part = Part::Rotate;
     m.axis = unit_direction(r, "axis");
@@ -1078,8 +1191,9 @@ Scene parse_scene(const std::string& text, const std::string& path) {
   sc.path = path;
   sc.text = text;
   files_read = &sc.files;
+  warnings_out = &sc.warnings;
   struct Reset {
-    ~Reset() { files_read = nullptr; }
+    ~Reset() { files_read = nullptr, warnings_out = nullptr; }
   } reset;
   TableReader top(root, path, "");
   read_simulation(top, sc);

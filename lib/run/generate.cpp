@@ -21,6 +21,7 @@
 #include "run/progress.hpp"
 #include "run/settle.hpp"
 #include "run/setup.hpp"
+#include "run/start_checks.hpp"
 #include "walls/container.hpp"
 
 namespace dem {
@@ -109,7 +110,9 @@ void write_sizes_csv(const std::string& path, const std::string& title, const st
 void settle_and_write(const char* tool, Simulation& sim, const SettleSpec& spec, const Scene& scene, const GenerateOptions& o,
                       Clock::time_point t0, const std::vector<CutSpec>& cuts = {}) {
   sim.dt = choose_time_step(sim, scene.simulation);
-  const SettleResult s = settle(sim, spec, std::string(tool) + " settle", o.quiet);
+  const StartChecks checks(sim, std::string(tool) == "gen-primary" && scene.generation ? &*scene.generation : nullptr);
+  checks.print(tool);
+  const SettleResult s = checks.guard([&] { return settle(sim, spec, std::string(tool) + " settle", o.quiet); });
   apply_cuts(tool, sim, cuts, scene);
   write_checkpoint(o.out, sim, meta_for(tool, scene, o.in));
   report(tool, sim, s, seconds_since(t0));
@@ -121,6 +124,7 @@ void gen_primary(const GenerateOptions& o) {
   check_output_file(o.out, "--out");  // before the run, not after it
   const auto t0 = Clock::now();
   const Scene scene = read_scene_file(o.scene);
+  print_scene_warnings(scene, "gen-primary");
   if (!scene.generation) throw InputError(o.scene + ": gen-primary needs a [generation] table");
   Simulation sim = simulation_from_scene(scene);
   std::mt19937_64 rng(scene.generation->seed);
@@ -135,6 +139,7 @@ void copy_settle(const GenerateOptions& o) {
   check_output_file(o.out, "--out");  // before the run, not after it
   const auto t0 = Clock::now();
   const Scene scene = read_scene_file(o.scene);
+  print_scene_warnings(scene, "copy-settle");
   if (!scene.copy) throw InputError(o.scene + ": copy-settle needs a [copy] table");
   Simulation sim = load_under_scene(o.in, scene, WallPositions::FromScene);  // the tiles need the scene's container
   const auto [lo, hi] = sphere_bounds(sim.particles);
@@ -158,6 +163,7 @@ void compact(const GenerateOptions& o) {
   check_output_file(o.out, "--out");  // before the run, not after it
   const auto t0 = Clock::now();
   const Scene scene = read_scene_file(o.scene);
+  print_scene_warnings(scene, "compact");
   if (!scene.compact) throw InputError(o.scene + ": compact needs a [compact] table");
   const CompactSpec& c = *scene.compact;
   Simulation sim = load_under_scene(o.in, scene, WallPositions::FromCheckpoint);
@@ -188,6 +194,8 @@ void compact(const GenerateOptions& o) {
     for (const ServoGroup& g : servos) s += g.stress(f);
     return s / servos.size();
   };
+  const StartChecks checks(sim);
+  checks.print("compact");
   double k_max = 0, c_max = 0;
   servo_constants(sim, k_max, c_max);
   const std::int64_t max_steps = static_cast<std::int64_t>(std::ceil(c.max_time / sim.dt));
@@ -195,6 +203,7 @@ void compact(const GenerateOptions& o) {
   Progress progress("compact", max_steps, o.quiet);
   std::int64_t steps = 0;
   bool done = false;
+  checks.guard([&] {
   if (c.target_stress > 0) {
     // Stress servo (control/servo.hpp). Done when every wall is within 2 % of the target and the bed
     // is at rest (settle criterion).
@@ -219,6 +228,7 @@ void compact(const GenerateOptions& o) {
       done = porosity(sim) <= c.target_porosity;
     }
   }
+  });
   progress.finish(steps, sim.time);
   if (!done) {
     std::ostringstream m;
@@ -228,7 +238,7 @@ void compact(const GenerateOptions& o) {
   }
   for (const ServoGroup& g : servos) sim.walls[g.elements[0]].start_motion(WallMotion{}, sim.time);
   SettleResult s;
-  if (c.target_porosity > 0) s = settle(sim, c.settle, "compact relax", o.quiet);
+  if (c.target_porosity > 0) s = checks.guard([&] { return settle(sim, c.settle, "compact relax", o.quiet); });
   else s = {steps, kinetic_ratio(sim), true};
   write_checkpoint(o.out, sim, meta_for("compact", scene, o.in));
   if (c.target_stress > 0)

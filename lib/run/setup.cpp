@@ -161,6 +161,10 @@ double choose_time_step(const Simulation& sim, const SimulationSpec& spec) {
   if (spec.time_step > critical)
     std::cerr << "warning: forced time step " << spec.time_step << " s exceeds the critical step " << critical
               << " s of eq. 2.48: expect an unstable run\n";
+  else if (spec.time_step > 0.2 * critical)  // as frac > 0.2, which the parser refuses unless forced
+    std::cerr << "warning: simulation.time_step = " << spec.time_step << " s is " << spec.time_step / critical
+              << " of the critical step " << critical << " s of eq. 2.48: above 0.2 a contact lasts fewer than 8 steps and the "
+                 "results are wrong (README, \"Which FRAC buys which accuracy\")\n";
   return spec.time_step;
 }
 

@@ -21,6 +21,7 @@
 #include "run/particle_track.hpp"
 #include "run/progress.hpp"
 #include "run/setup.hpp"
+#include "run/start_checks.hpp"
 #include "run/wall_log.hpp"
 
 namespace dem {
@@ -133,6 +134,7 @@ void run_stage(const StageOptions& o) {
     for (const StageSpec& s : scene.stages) list += (list.empty() ? "" : ", ") + s.name;
     throw InputError(o.scene + ": no [[stage]] named \"" + o.stage + "\" (defined: " + (list.empty() ? "none" : list) + ")");
   }
+  print_scene_warnings(scene, "run-stage");
   const std::string restart_file = restart_path(o.out);
   // Every output is checked before anything runs: an unwritable one fails now, not after the run.
   check_output_file(o.out, "--out");
@@ -160,6 +162,8 @@ void run_stage(const StageOptions& o) {
     meta.run = RunInfo{stage->name, sim.step, static_cast<std::int64_t>(std::ceil(stage->duration / sim.dt - 1e-9)), sim.time, {}, {},
                        o.in, seal_fingerprint(o.in)};
   }
+  const StartChecks checks(sim);
+  checks.print("run-stage");
   meta.writer = "run-stage";
   meta.scene_path = scene.path;
   meta.scene_text = scene.text;
@@ -222,7 +226,7 @@ void run_stage(const StageOptions& o) {
       last_checkpoint = std::chrono::steady_clock::now();
     };
     while (sim.step < end) {
-      sim.advance();
+      checks.guard([&] { sim.advance(); });
       // Servo speeds for the next step from this step's forces: the periodic checkpoint holds them as
       // the walls' motion, so a resumed run continues exactly.
       if (!servos.empty()) drive_servos(sim, servos, k_max, c_max);

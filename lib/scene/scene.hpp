@@ -146,6 +146,10 @@ struct Scene {
   // Every other file the scene reads (STL walls, mesh regions), each "fnv1a64=<hex> size=N PATH"
   // (io/file_seal.hpp), in the order first read: a restart compares them, as the scene text.
   std::vector<std::string> files;
+  // Plausibility warnings (docs/scene.md, "Warnings"): values the parser accepts but a granular scene
+  // does not have (units mistaken, most likely), each "file:line:col: key = value: why". The tools
+  // print them on stderr (print_scene_warnings) and run on.
+  std::vector<std::string> warnings;
 
   const StageSpec* stage(const std::string& name) const;
   // A fingerprint of the walls as built (names, materials, every vertex to the bit): the walls
