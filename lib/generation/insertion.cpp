@@ -208,7 +208,10 @@ std::size_t insert_due(Simulation& sim, std::vector<InsertGroup>& groups, std::i
     }
   }
   // New particles: the neighbour list is built again, the contact history carried over by key.
-  if (inserted) sim.set_contacts(sim.pair_contacts(), sim.wall_contacts());
+  if (inserted) {
+    sim.set_contacts(sim.pair_contacts(), sim.wall_contacts());
+    sim.release_contact_views();  // the compacted copies were taken: do not carry them to the next event
+  }
   return inserted;
 }
 
