@@ -87,6 +87,11 @@ def main(path, expect_writer):
         assert f["contacts/pair_bonded"].dtype == np.uint8
         for name, units in (("run/frame_times", b"s"), ("run/servo_integral", b"m/s")):
             assert f[name].dtype.kind == "f" and f[name].ndim == 1 and f[name].attrs["units"] == units, name
+        # Per [[stage.insert]] group: particles inserted and particle-events deferred (none outside run-stage).
+        ins = f["run/insert_count"]
+        assert ins.dtype.kind == "i" and ins.ndim == 1 and "units" not in ins.attrs, "run/insert_count"
+        assert f["run/insert_deferred"].dtype.kind == "i" and f["run/insert_deferred"].shape == ins.shape, "run/insert_deferred"
+        assert (ins[()] >= 0).all() and (f["run/insert_deferred"][()] >= 0).all()
 
         # The input it started from: none for gen-primary, else the --in's seal.
         seal = f["run/input_seal"][0].decode()

@@ -2,6 +2,7 @@
 // the line, the key, the value and what is allowed.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -372,6 +373,70 @@ TEST(SceneWarnings, ImplausibleValuesWarnWithTheLikelyUnit) {
     EXPECT_TRUE(found) << c.what << ": no warning with every fragment; warnings:" << got;
   }
 }
+
+// [[stage.insert]]: a valid group, then each malformed key rejected with its name and what is allowed.
+const std::string kInsert = R"(
+[[stage.insert]]
+region = { type = "box", min = [0.0, 0.0, 0.03], max = [0.02, 0.02, 0.05] }
+material = "glass"
+radius_min = 0.001
+radius_max = 0.0015
+mass_rate = 0.5
+velocity = [0.0, 0.0, -1.0]
+seed = 9
+)";
+
+std::string with_insert(const std::string& from, const std::string& to) { return kValid + replace(kInsert, from, to); }
+
+TEST(SceneParser, InsertParses) {
+  const Scene s = parse_scene(kValid + kInsert, "scene.toml");
+  ASSERT_EQ(s.stages[0].inserts.size(), 1u);
+  const InsertSpec& g = s.stages[0].inserts[0];
+  EXPECT_EQ(g.rate_kind, InsertSpec::Rate::Mass);
+  EXPECT_EQ(g.rate, 0.5);
+  EXPECT_EQ(g.velocity, Vec3(0, 0, -1));
+  EXPECT_EQ(g.seed, 9u);
+  EXPECT_EQ(g.start, 0);
+  EXPECT_TRUE(std::isinf(g.end) && std::isinf(g.total)) << "the whole stage, no cap";
+  EXPECT_EQ(g.every, 1);
+  ASSERT_EQ(g.material_fractions.size(), 1u);
+  const Scene sieve = parse_scene(kValid + replace(replace(kInsert, "radius_min = 0.001\nradius_max = 0.0015\n",
+                                                           "size = { distribution = \"sieve\", sieve = [[0.002, 0.0], [0.003, 1.0]] }\n"),
+                                                   "material = \"glass\"", "materials = { glass = 1.0 }"),
+                                  "scene.toml");
+  EXPECT_EQ(sieve.stages[0].inserts[0].radius_max, 0.0015) << "the sieve's largest diameter / 2";
+}
+
+std::vector<BadCase> insert_bad_cases() {
+  return {
+      {"insert: unknown key", with_insert("seed = 9", "seed = 9\nrat = 1.0"), {"stage[0].insert[0].rat", "unknown key", "allowed here"}},
+      {"insert: no rate", with_insert("mass_rate = 0.5\n", ""), {"stage[0].insert[0].count_rate", "exactly one of count_rate [1/s] and mass_rate [kg/s]"}},
+      {"insert: two rates", with_insert("mass_rate = 0.5", "mass_rate = 0.5\ncount_rate = 100.0"), {"insert[0].mass_rate = 0.5", "exactly one"}},
+      {"insert: negative rate", with_insert("mass_rate = 0.5", "mass_rate = -0.5"), {"insert[0].mass_rate = -0.5", "out of range", "(0, inf) kg/s"}},
+      {"insert: half-space region", with_insert("{ type = \"box\", min = [0.0, 0.0, 0.03], max = [0.02, 0.02, 0.05] }",
+                                                "{ type = \"half_space\", point = [0.0, 0.0, 0.0], normal = [0.0, 0.0, 1.0] }"),
+       {"insert[0].region", "bounded region", "a box, a sphere, a cylinder with a length, or a mesh"}},
+      {"insert: sphere too large for the region", with_insert("radius_max = 0.0015", "radius_max = 0.015"),
+       {"insert[0].region", "does not fit in the region"}},
+      {"insert: radius_max below radius_min", with_insert("radius_max = 0.0015", "radius_max = 0.0005"), {"insert[0].radius_max = 0.0005", ">= radius_min"}},
+      {"insert: unknown material", with_insert("material = \"glass\"", "material = \"sand\""),
+       {"insert[0].material = \"sand\"", "no material of that name", "\"glass\""}},
+      {"insert: material and materials", with_insert("material = \"glass\"", "material = \"glass\"\nmaterials = { glass = 1.0 }"),
+       {"insert[0].materials", "exactly one of material"}},
+      {"insert: fractions not summing to one", with_insert("material = \"glass\"", "materials = { glass = 0.5 }"),
+       {"insert[0].materials", "sum to 1"}},
+      {"insert: end before start", with_insert("seed = 9", "seed = 9\nstart = 0.05\nend = 0.01"), {"insert[0].end = 0.01", "after start"}},
+      {"insert: start after the stage", with_insert("seed = 9", "seed = 9\nstart = 0.2"), {"insert[0].start = 0.2", "out of range", "[0, 0.1)"}},
+      {"insert: total of the other kind", with_insert("seed = 9", "seed = 9\ntotal_count = 10"), {"insert[0].total_count = 10", "total_mass"}},
+      {"insert: every zero", with_insert("seed = 9", "seed = 9\nevery = 0"), {"insert[0].every = 0", "[1, 1000000000]"}},
+      {"insert: velocity not a vector", with_insert("velocity = [0.0, 0.0, -1.0]", "velocity = -1.0"),
+       {"insert[0].velocity = -1", "array of 3 numbers"}},
+      {"insert: sieve and radius bounds", with_insert("radius_min = 0.001", "size = { distribution = \"sieve\", sieve = [[0.002, 0.0], [0.003, 1.0]] }\nradius_min = 0.001"),
+       {"insert[0].radius_min", "not used with size.distribution = \"sieve\""}},
+  };
+}
+
+INSTANTIATE_TEST_SUITE_P(BadInsert, SceneRejects, ::testing::ValuesIn(insert_bad_cases()));
 
 }  // namespace
 }  // namespace dem

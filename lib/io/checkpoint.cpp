@@ -451,6 +451,10 @@ void run_datasets(Io& io, Run& run) {
   io.scalar("/run/stage_start_time", run.stage_start_time, "s");
   io.doubles("/run/frame_times", run.frame_times, "s");
   if (io.has("/run/servo_integral")) io.doubles("/run/servo_integral", run.servo_integral, "m/s");  // added within schema 2
+  if (io.has("/run/insert_count")) {  // added within schema 4: files without it had no insertion
+    io.int64s("/run/insert_count", run.insert_count);
+    io.int64s("/run/insert_deferred", run.insert_deferred, static_cast<long>(run.insert_count.size()));
+  }
   if (io.has("/run/input_seal")) {  // schema 4 on
     io.text("/run/input_path", run.input_path);
     io.text("/run/input_seal", run.input_seal);

@@ -26,6 +26,8 @@ struct RunInfo {
   std::vector<double> servo_integral;  // per [[stage.servo]]: its integral action [m/s] (ServoGroup)
   std::string input_path;  // the --in this run started from ("" for gen-primary)
   std::string input_seal;  // its seal_fingerprint (io/file_seal.hpp), "" for gen-primary
+  std::vector<std::int64_t> insert_count;     // per [[stage.insert]]: particles inserted so far
+  std::vector<std::int64_t> insert_deferred;  // per [[stage.insert]]: particle-events that found no room
 };
 
 struct CheckpointMeta {

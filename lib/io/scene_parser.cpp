@@ -15,6 +15,7 @@
 
 #include "contact/model_table.hpp"
 #include "core/error.hpp"
+#include "generation/insertion.hpp"
 #include "generation/size_distribution.hpp"
 #include "io/file_seal.hpp"
 #include "io/stl.hpp"
@@ -894,6 +895,26 @@ void read_radius_bounds(TableReader& r, GenerationSpec& g) {
   check_truncation(r, g);
 }
 
+// materials = { name = fraction, ... } (fractions summing to 1).
+std::vector<std::pair<int, double>> read_fractions(TableReader& r, const Scene& sc) {
+  const toml::node& mn = r.required("materials");
+  const toml::table* mt = mn.as_table();
+  if (!mt || mt->empty()) r.fail_at(&mn, "materials", "expected a table of material = fraction, e.g. { glass = 1.0 }");
+  TableReader mr(*mt, r.file(), r.name("materials"));
+  std::vector<std::pair<int, double>> out;
+  double sum = 0;
+  for (const auto& [k, v] : *mt) {
+    const std::string name(k.str());
+    const int idx = find_material(sc.materials, name);
+    if (idx < 0) mr.fail_at(&v, name, "no material of that name");
+    const double f = mr.number(name, 0, 1, "(fraction)", true);
+    sum += f;
+    out.emplace_back(idx, f);
+  }
+  if (std::abs(sum - 1) > 1e-9) r.fail_at(&mn, "materials", "the fractions must sum to 1 (they sum to " + std::to_string(sum) + ")");
+  return out;
+}
+
 void read_generation(TableReader& top, Scene& sc) {
   const toml::table* t = top.subtable("generation");
   if (!t) return;
@@ -917,20 +938,7 @@ void read_generation(TableReader& top, Scene& sc) {
     r.warn(g.size.kind == SizeSpec::Kind::Sieve ? "size" : "radius_max",
            "spheres of radius up to " + num(g.radius_max) + " m, above the " + num(kRadiusHi) + " m of a granular particle: lengths in mm? (m expected)");
   g.seed = static_cast<std::uint64_t>(r.integer_or("seed", 1, 0, std::numeric_limits<long>::max()));
-  const toml::node& mn = r.required("materials");
-  const toml::table* mt = mn.as_table();
-  if (!mt || mt->empty()) r.fail_at(&mn, "materials", "expected a table of material = fraction, e.g. { glass = 1.0 }");
-  TableReader mr(*mt, top.file(), "generation.materials");
-  double sum = 0;
-  for (const auto& [k, v] : *mt) {
-    const std::string name(k.str());
-    const int idx = find_material(sc.materials, name);
-    if (idx < 0) mr.fail_at(&v, name, "no material of that name");
-    const double f = mr.number(name, 0, 1, "(fraction)", true);
-    sum += f;
-    g.material_fractions.emplace_back(idx, f);
-  }
-  if (std::abs(sum - 1) > 1e-9) r.fail_at(&mn, "materials", "the fractions must sum to 1 (they sum to " + std::to_string(sum) + ")");
+  g.material_fractions = read_fractions(r, sc);
   g.placed = read_placed(r, sc, g);
   if (g.count == 0 && g.placed.empty()) r.fail("count", "no spheres: give count >= 1 or [[generation.place]] entries");
   g.settle = read_settle(r, "settle");
@@ -1103,6 +1111,66 @@ void read_motion(TableReader& r, MotionSpec& ms) {
   }
 }
 
+// [[stage.insert]]: particles poured into a region during the stage (generation/insertion.hpp).
+InsertSpec read_insert(TableReader& r, const Scene& sc, double duration) {
+  InsertSpec g;
+  g.region = read_region(r, "region");
+  Vec3 lo, hi;
+  if (!region_bounds(g.region, lo, hi))
+    r.fail("region", "particles are inserted into a bounded region: a box, a sphere, a cylinder with a length, or a mesh");
+  const PeriodicBox& period = sc.simulation.periodic;
+  for (int d = 0; d < 3; ++d)
+    if (period.axis[d] && (lo[d] < period.lo[d] || hi[d] > period.hi[d]))
+      r.fail("region", std::string("along the periodic axis ") + "xyz"[d] + " the insertion region must lie within simulation.periodic");
+  // The materials: one by name, or fractions as [generation] gives them.
+  const bool one = r.has("material"), mixed = r.has("materials");
+  if (one == mixed) r.fail(one ? "materials" : "material", "give exactly one of material = \"name\" and materials = { name = fraction, ... }");
+  if (one) g.material_fractions = {{material_ref(r, "material", sc.materials), 1.0}};
+  else g.material_fractions = read_fractions(r, sc);
+  // The sizes, as [generation] and [generation.size] give them.
+  g.size = read_size(r);
+  if (g.size.kind == SizeSpec::Kind::Sieve) {
+    for (const char* key : {"radius_min", "radius_max"})
+      if (r.has(key)) r.fail(key, "not used with size.distribution = \"sieve\": the curve's first and last diameters bound the sizes");
+    g.radius_min = 0.5 * g.size.sieve.front().first;
+    g.radius_max = 0.5 * g.size.sieve.back().first;
+  } else {
+    g.radius_min = r.number("radius_min", 0, kInf, "m", true);
+    g.radius_max = r.number("radius_max", 0, kInf, "m", true);
+    if (g.radius_min > g.radius_max) r.fail("radius_max", "radius_max must be >= radius_min (" + std::to_string(g.radius_min) + " m)");
+    const double mass = truncated_mass(g.size, g.radius_min, g.radius_max);
+    if (!(mass >= kMinTruncatedMass)) {
+      std::ostringstream m;
+      m << "only a fraction " << mass << " of the distribution lies in [radius_min, radius_max] = [" << g.radius_min << ", " << g.radius_max
+        << "] m (at least " << kMinTruncatedMass << " is needed): move the distribution or the bounds";
+      r.fail("size", m.str());
+    }
+  }
+  const Vec3 centre = 0.5 * (lo + hi);
+  if (!sphere_in_region(g.region, centre, g.radius_max) && g.region.kind != Region::Kind::Mesh)
+    r.fail("region", "a sphere of the largest radius (" + std::to_string(g.radius_max) + " m) does not fit in the region");
+  // The rate: exactly one of a count and a mass per second.
+  const bool by_count = r.has("count_rate"), by_mass = r.has("mass_rate");
+  if (by_count == by_mass) r.fail(by_count ? "mass_rate" : "count_rate", "give exactly one of count_rate [1/s] and mass_rate [kg/s]");
+  g.rate_kind = by_mass ? InsertSpec::Rate::Mass : InsertSpec::Rate::Count;
+  g.rate = by_mass ? r.number("mass_rate", 0, kInf, "kg/s", true) : r.number("count_rate", 0, kInf, "1/s", true);
+  g.velocity = r.vec3_or("velocity", Vec3::Zero());
+  g.start = r.number_or("start", 0.0, 0, duration, "s since the stage start", false, true);
+  g.end = r.number_or("end", kInf, 0, kInf, "s since the stage start", true);
+  if (r.has("end") && !(g.end > g.start)) r.fail("end", "end must be after start (" + std::to_string(g.start) + " s)");
+  const bool cap_count = r.has("total_count"), cap_mass = r.has("total_mass");
+  if (cap_count && cap_mass) r.fail("total_mass", "give at most one of total_count and total_mass");
+  g.total = kInf;
+  if (cap_count) g.total = static_cast<double>(r.integer("total_count", 1, 1000000000)), g.total_kind = InsertSpec::Rate::Count;
+  if (cap_mass) g.total = r.number("total_mass", 0, kInf, "kg", true), g.total_kind = InsertSpec::Rate::Mass;
+  if (cap_count != (g.rate_kind == InsertSpec::Rate::Count) && (cap_count || cap_mass))
+    r.fail(cap_count ? "total_count" : "total_mass", by_mass ? "with mass_rate the cap is total_mass [kg]" : "with count_rate the cap is total_count");
+  g.seed = static_cast<std::uint64_t>(r.integer_or("seed", 1, 0, std::numeric_limits<long>::max()));
+  g.every = r.integer_or("every", 1, 1, 1000000000);
+  g.attempts = static_cast<int>(r.integer_or("attempts", 100, 1, 1000000));
+  return g;
+}
+
 void read_stages(TableReader& top, Scene& sc) {
   const auto list = top.tables("stage");
   for (std::size_t k = 0; k < list.size(); ++k) {
@@ -1170,6 +1238,12 @@ void read_stages(TableReader& top, Scene& sc) {
       if (sr.has("direction")) sv.direction = unit_direction(sr, "direction");
       sr.finish();
       s.servos.push_back(sv);
+    }
+    const auto inserts = r.tables("insert");
+    for (std::size_t m = 0; m < inserts.size(); ++m) {
+      TableReader ir(*inserts[m], top.file(), r.name(indexed("insert", m)));
+      s.inserts.push_back(read_insert(ir, sc, s.duration));
+      ir.finish();
     }
     r.finish();
     sc.stages.push_back(std::move(s));

@@ -11,6 +11,7 @@
 #include "core/error.hpp"
 #include "core/version.hpp"
 #include "generation/fill.hpp"
+#include "generation/insertion.hpp"
 #include "io/checkpoint.hpp"
 #include "io/file_seal.hpp"
 #include "io/output_paths.hpp"
@@ -124,6 +125,21 @@ void check_resumable(const StageOptions& o, const Scene& scene, const StageSpec&
   }
 }
 
+// The time step must hold for the particles a stage will insert too: the particles now and, per
+// [[stage.insert]] material, one of its smallest and one of its largest radius (eq. 2.48 takes
+// the least mass and the largest stiffness).
+Simulation with_inserted_sizes(const Simulation& sim, const StageSpec& stage) {
+  if (stage.inserts.empty()) return sim;
+  Simulation probe;
+  probe.materials = sim.materials;
+  probe.params = sim.params;
+  probe.particles = sim.particles;
+  for (const InsertSpec& s : stage.inserts)
+    for (const auto& [m, f] : s.material_fractions)
+      for (double a : {s.radius_min, s.radius_max}) probe.particles.add(-1, Vec3::Zero(), a, sim.materials.materials()[m].density, m);
+  return probe;
+}
+
 }  // namespace
 
 void run_stage(const StageOptions& o) {
@@ -157,10 +173,10 @@ void run_stage(const StageOptions& o) {
     adopt_scene(sim, scene);
     apply_actions(sim, *stage);
     check_inside_walls(sim, scene, o.in);
-    sim.dt = choose_time_step(sim, scene.simulation);
+    sim.dt = choose_time_step(with_inserted_sizes(sim, *stage), scene.simulation);
     start_motions(sim, *stage);
     meta.run = RunInfo{stage->name, sim.step, static_cast<std::int64_t>(std::ceil(stage->duration / sim.dt - 1e-9)), sim.time, {}, {},
-                       o.in, seal_fingerprint(o.in)};
+                       o.in, seal_fingerprint(o.in), {}, {}};
   }
   const StartChecks checks(sim);
   checks.print("run-stage");
@@ -181,6 +197,17 @@ void run_stage(const StageOptions& o) {
   auto keep_integrals = [&]() {
     run.servo_integral.resize(servos.size());
     for (std::size_t k = 0; k < servos.size(); ++k) run.servo_integral[k] = servos[k].integral;
+  };
+  // Insertion: the counts inserted so far come from the periodic checkpoint when resumed.
+  if (run.insert_count.empty()) run.insert_count.assign(stage->inserts.size(), 0), run.insert_deferred.assign(stage->inserts.size(), 0);
+  if (run.insert_count.size() != stage->inserts.size() || run.insert_deferred.size() != stage->inserts.size())
+    throw IoError(restart_file + ": /run/insert_count holds " + std::to_string(run.insert_count.size()) + " values, the stage has " +
+                  std::to_string(stage->inserts.size()) + " [[stage.insert]] groups");
+  std::vector<InsertGroup> inserts;
+  for (std::size_t k = 0; k < stage->inserts.size(); ++k)
+    inserts.emplace_back(stage->inserts[k], sim.materials, run.insert_count[k], run.insert_deferred[k]);
+  auto keep_insert_counts = [&]() {
+    for (std::size_t k = 0; k < inserts.size(); ++k) run.insert_count[k] = inserts[k].count(), run.insert_deferred[k] = inserts[k].deferred();
   };
   double k_max = 0, c_max = 0;
   servo_constants(sim, k_max, c_max);
@@ -220,12 +247,16 @@ void run_stage(const StageOptions& o) {
     std::int64_t checkpoint_step = have_checkpoint ? sim.step : -1;
     auto write_periodic = [&]() {
       keep_integrals();
+      keep_insert_counts();
       write_checkpoint(restart_file, sim, meta);
       have_checkpoint = true;
       checkpoint_step = sim.step;
       last_checkpoint = std::chrono::steady_clock::now();
     };
     while (sim.step < end) {
+      // Particles due by now, before the step (a periodic checkpoint is written after a step, so a
+      // resumed run makes this event first, as the uninterrupted one does).
+      if (!inserts.empty()) insert_due(sim, inserts, sim.step - run.stage_start_step, sim.time - run.stage_start_time);
       checks.guard([&] { sim.advance(); });
       // Servo speeds for the next step from this step's forces: the periodic checkpoint holds them as
       // the walls' motion, so a resumed run continues exactly.
@@ -273,7 +304,9 @@ void run_stage(const StageOptions& o) {
     wall_log.finish();
     track.finish();
     frames.commit(run.frame_times.size());
+    if (!inserts.empty() && !o.quiet) std::cerr << "run-stage: " << insert_report(inserts, sim.time - run.stage_start_time) << "\n";
     keep_integrals();
+    keep_insert_counts();
     write_checkpoint(o.out, sim, meta);
   } catch (...) {
     if (!have_checkpoint) {

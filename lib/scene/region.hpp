@@ -31,6 +31,7 @@ class ClosedMesh {
   // Volume enclosed (divergence theorem), positive whichever way the triangles face [m^3].
   double volume() const;
   std::size_t size() const { return triangles_.size(); }
+  void bounds(Vec3& lo, Vec3& hi) const { lo = lo_, hi = hi_; }  // of the triangles' vertices
 
  private:
   std::vector<std::array<Vec3, 3>> triangles_;

@@ -122,6 +122,27 @@ struct ServoSpec {
   std::optional<Vec3> direction;   // direction of compression; default: the group's normal towards the particles
 };
 
+// `[[stage.insert]]`: particles poured into a region during the stage (generation/insertion.hpp).
+// Particle i of the group is due once the amount placed before it (i for count_rate, the mass of
+// particles 0..i-1 for mass_rate) is at most rate x (time since `start`, up to `end`).
+struct InsertSpec {
+  enum class Rate { Count, Mass };
+  Region region;                          // box, sphere, cylinder of finite length, mesh
+  std::vector<std::pair<int, double>> material_fractions;  // material index, fraction (sum 1)
+  SizeSpec size;                          // as [generation.size]
+  double radius_min = 0, radius_max = 0;  // [m]
+  Rate rate_kind = Rate::Count;
+  double rate = 0;                        // [1/s] or [kg/s]
+  Vec3 velocity = Vec3::Zero();           // initial velocity [m/s]
+  double start = 0;                       // [s] since the stage start
+  double end = 0;                         // [s] since the stage start; +inf = to the stage end
+  double total = 0;                       // at most this many particles (count) or this mass [kg]; +inf = no cap
+  Rate total_kind = Rate::Count;
+  std::uint64_t seed = 1;
+  long every = 1;                         // steps between insertion events (from the stage start)
+  int attempts = 100;                     // positions tried per particle and event before deferring it
+};
+
 struct StageSpec {
   std::string name;
   double duration = 0;      // [s]
@@ -129,6 +150,7 @@ struct StageSpec {
   std::vector<ActionSpec> actions;  // applied in order at the start of the stage
   std::vector<MotionSpec> motions;  // wall motions during the stage (others stay fixed)
   std::vector<ServoSpec> servos;    // servo-controlled wall groups
+  std::vector<InsertSpec> inserts;  // particles poured in during the stage
 };
 
 struct Scene {
