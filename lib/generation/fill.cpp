@@ -5,48 +5,34 @@
 #include <functional>
 #include <set>
 #include <sstream>
-#include <unordered_map>
 
 #include "core/error.hpp"
 #include "generation/size_distribution.hpp"
+#include "generation/sphere_grid.hpp"
 
 namespace dem {
 
 namespace {
 
-// The spheres placed so far, in a hash grid of cells 2 radius_max wide (O(1) overlap checks); the
-// given spheres may be larger than radius_max, so candidates are checked against them directly.
+// The spheres placed so far (a SphereGrid of cells 2 radius_max wide); the given spheres may be
+// larger than radius_max, so candidates are checked against them directly.
 class FreeSpace {
  public:
-  FreeSpace(const Particles& p, const GenerationSpec& spec, std::size_t first) : p_(p), spec_(spec), first_(first), cell_(2 * spec.radius_max) {}
+  FreeSpace(const Particles& p, const GenerationSpec& spec, std::size_t first)
+      : p_(p), spec_(spec), first_(first), grid_(p, 2 * spec.radius_max) {}
 
   bool free(const Vec3& x, double a) const {
     for (std::size_t k = 0; k < spec_.placed.size(); ++k)
       if ((p_.x[first_ + k] - x).norm() < a + p_.radius[first_ + k]) return false;
-    const long ci = cell(x[0]), cj = cell(x[1]), ck = cell(x[2]);
-    for (long di = -1; di <= 1; ++di)
-      for (long dj = -1; dj <= 1; ++dj)
-        for (long dk = -1; dk <= 1; ++dk) {
-          auto it = grid_.find(key(ci + di, cj + dj, ck + dk));
-          if (it == grid_.end()) continue;
-          for (int o : it->second) {
-            const double r = a + p_.radius[o];
-            if ((p_.x[o] - x).squaredNorm() < r * r) return false;
-          }
-        }
-    return true;
+    return grid_.free_at(x, a);
   }
-  void add(const Vec3& x, int slot) { grid_[key(cell(x[0]), cell(x[1]), cell(x[2]))].push_back(slot); }
+  void add(int slot) { grid_.add(slot); }
 
  private:
-  long cell(double c) const { return static_cast<long>(std::floor(c / cell_)); }
-  static long key(long i, long j, long k) { return (i * 73856093L) ^ (j * 19349663L) ^ (k * 83492791L); }
-
   const Particles& p_;
   const GenerationSpec& spec_;
   std::size_t first_;
-  double cell_;
-  std::unordered_map<long, std::vector<int>> grid_;
+  SphereGrid grid_;
 };
 
 Vec3 draw_centre(const GenerationSpec& spec, double a, std::mt19937_64& rng) {
@@ -89,8 +75,8 @@ void place_drawn_per_attempt(Simulation& sim, const GenerationSpec& spec, const 
     const Vec3 x = draw_centre(spec, a, rng);
     const int mat = draw_material(spec, rng);
     if (!space.free(x, a)) continue;
-    space.add(x, static_cast<int>(p.size()));
     p.add(first_id + static_cast<Index>(p.size() - first), x, a, sim.materials.materials()[mat].density, mat);
+    space.add(static_cast<int>(p.size() - 1));
   }
 }
 
@@ -109,8 +95,8 @@ void place_largest_first(Simulation& sim, const GenerationSpec& spec, const Radi
       if (++attempts > max_attempts(spec)) too_full(spec, p.size() - first - spec.placed.size(), max_attempts(spec));
       const Vec3 x = draw_centre(spec, a, rng);
       if (!space.free(x, a)) continue;
-      space.add(x, static_cast<int>(p.size()));
       p.add(first_id + static_cast<Index>(p.size() - first), x, a, sim.materials.materials()[mat].density, mat);
+      space.add(static_cast<int>(p.size() - 1));
       break;
     }
   }

@@ -6,8 +6,8 @@
 #include <memory>
 #include <random>
 #include <sstream>
-#include <unordered_map>
 
+#include "generation/sphere_grid.hpp"
 #include "walls/wall.hpp"
 
 namespace dem {
@@ -23,18 +23,15 @@ std::uint64_t mix(std::uint64_t x) {
 }
 std::uint64_t mix(std::uint64_t a, std::uint64_t b) { return mix(mix(a) ^ b); }
 
-// The particles present and those placed in this event, in a hash grid of cells one largest
-// diameter wide (O(1) overlap checks); periodic axes by testing the candidate's images.
+// The particles present and those placed in this event (a SphereGrid of cells one largest
+// diameter wide); periodic axes by testing the candidate's images.
 class Occupancy {
  public:
-  Occupancy(const Particles& p, const PeriodicBox& box, double r_new_max) : p_(p), box_(box) {
-    double r = r_new_max;
-    for (double a : p.radius) r = std::max(r, a);
-    r_max_ = r;
-    cell_ = 2 * r;
+  Occupancy(const Particles& p, const PeriodicBox& box, double r_new_max)
+      : box_(box), r_max_(largest_radius(p, r_new_max)), grid_(p, 2 * r_max_) {
     for (std::size_t k = 0; k < p.size(); ++k) add(static_cast<int>(k));
   }
-  void add(int slot) { grid_[key(cell(p_.x[slot][0]), cell(p_.x[slot][1]), cell(p_.x[slot][2]))].push_back(slot); }
+  void add(int slot) { grid_.add(slot); }
   bool free(const Vec3& x, double a) const {
     // The images of x that may reach a particle across a periodic boundary.
     Vec3 images[27];
@@ -50,32 +47,19 @@ class Occupancy {
       }
     }
     for (int k = 0; k < n; ++k)
-      if (!free_at(images[k], a)) return false;
+      if (!grid_.free_at(images[k], a)) return false;
     return true;
   }
 
  private:
-  bool free_at(const Vec3& x, double a) const {
-    const long ci = cell(x[0]), cj = cell(x[1]), ck = cell(x[2]);
-    for (long di = -1; di <= 1; ++di)
-      for (long dj = -1; dj <= 1; ++dj)
-        for (long dk = -1; dk <= 1; ++dk) {
-          auto it = grid_.find(key(ci + di, cj + dj, ck + dk));
-          if (it == grid_.end()) continue;
-          for (int o : it->second) {
-            const double r = a + p_.radius[o];
-            if ((p_.x[o] - x).squaredNorm() < r * r) return false;
-          }
-        }
-    return true;
+  static double largest_radius(const Particles& p, double r) {
+    for (double a : p.radius) r = std::max(r, a);
+    return r;
   }
-  long cell(double c) const { return static_cast<long>(std::floor(c / cell_)); }
-  static long key(long i, long j, long k) { return (i * 73856093L) ^ (j * 19349663L) ^ (k * 83492791L); }
 
-  const Particles& p_;
   const PeriodicBox& box_;
-  double r_max_ = 0, cell_ = 1;
-  std::unordered_map<long, std::vector<int>> grid_;
+  double r_max_;
+  SphereGrid grid_;
 };
 
 // The wall elements near a region now (their bounding boxes within r_max of the region's).
