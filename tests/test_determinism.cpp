@@ -23,21 +23,14 @@
 #include "contact/model_table.hpp"
 #include "sim/simulation.hpp"
 
+#include "glass.hpp"
 #include "same_bits.hpp"
 
 namespace dem {
 namespace {
 
-// Glass beads: the material of both scenes below.
-MaterialTable glass() {
-  Material m;
-  m.name = "glass";
-  m.density = 2500;
-  m.kn = m.kt = 5e4;
-  m.friction_angle = 25;
-  m.restitution = 0.3;
-  return MaterialTable({m}, {});
-}
+// Glass beads with friction: the material of both scenes below.
+MaterialTable glass() { return glass_beads(25); }
 
 Simulation make_cloud() {
   Simulation sim;

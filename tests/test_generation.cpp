@@ -7,17 +7,14 @@
 #include "generation/fill.hpp"
 #include "sim/simulation.hpp"
 
+#include "glass.hpp"
+
 namespace dem {
 namespace {
 
 Simulation with_glass() {
   Simulation sim;
-  Material m;
-  m.name = "glass";
-  m.density = 2500;
-  m.kn = m.kt = 5e4;
-  m.restitution = 0.3;
-  sim.materials = MaterialTable({m}, {});
+  sim.materials = glass_beads();
   return sim;
 }
 

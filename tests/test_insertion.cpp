@@ -12,18 +12,15 @@
 #include "generation/insertion.hpp"
 #include "walls/wall.hpp"
 
+#include "glass.hpp"
+
 namespace dem {
 namespace {
 
 // A closed box of glass walls [0, 0.04] x [0, 0.04] x [0, 0.1], ten spheres on its floor.
 Simulation glass_box(Vec3 gravity = Vec3(0, 0, -9.81)) {
   Simulation sim;
-  Material m;
-  m.name = "glass";
-  m.density = 2500;
-  m.kn = m.kt = 5e4;
-  m.restitution = 0.3;
-  sim.materials = MaterialTable({m}, {});
+  sim.materials = glass_beads();
   sim.params.gravity = gravity;
   const Vec3 lo(0, 0, 0), hi(0.04, 0.04, 0.1);
   const char* names[3][2] = {{"box.xmin", "box.xmax"}, {"box.ymin", "box.ymax"}, {"box.zmin", "box.zmax"}};

@@ -18,7 +18,10 @@
 #include "generation/fill.hpp"
 #include "generation/size_distribution.hpp"
 #include "io/scene_parser.hpp"
+#include "scene_rejects.hpp"
 #include "sim/simulation.hpp"
+
+#include "glass.hpp"
 
 namespace dem {
 namespace {
@@ -92,12 +95,7 @@ TEST(SizeDistribution, UniformIsTodaysDrawBitForBit) {
 // drew them before size distributions existed (one variate for the radius, three for the centre).
 TEST(SizeDistribution, UniformFillDrawsAsBefore) {
   Simulation sim;
-  Material m;
-  m.name = "glass";
-  m.density = 2500;
-  m.kn = m.kt = 5e4;
-  m.restitution = 0.3;
-  sim.materials = MaterialTable({m}, {});
+  sim.materials = glass_beads();
   GenerationSpec g;
   g.box_min = Vec3(0, 0, 0);
   g.box_max = Vec3(0.02, 0.02, 0.05);
@@ -301,12 +299,7 @@ TEST(SizeDistribution, SameSeedSameRadii) {
 // first, inside the box and without overlap.
 TEST(SizeDistribution, FillPlacesTheDrawnRadiiLargestFirst) {
   Simulation sim;
-  Material m;
-  m.name = "glass";
-  m.density = 2500;
-  m.kn = m.kt = 5e4;
-  m.restitution = 0.3;
-  sim.materials = MaterialTable({m}, {});
+  sim.materials = glass_beads();
   GenerationSpec g;
   g.box_min = Vec3(0, 0, 0);
   g.box_max = Vec3(0.02, 0.02, 0.03);
@@ -371,24 +364,13 @@ TEST(SizeScene, EachDistributionParses) {
   EXPECT_EQ(s.generation->radius_max, 1e-3) << "the largest sieve diameter / 2";
 }
 
-struct BadSize {
-  const char* what;
-  std::string text;
-  std::vector<std::string> expect;
-};
+using BadSize = BadScene;
 
 class SizeSceneRejects : public ::testing::TestWithParam<BadSize> {};
 
 TEST_P(SizeSceneRejects, WithAClearMessage) {
   const BadSize& c = GetParam();
-  try {
-    parse_scene(c.text, "scene.toml");
-    FAIL() << c.what << ": accepted";
-  } catch (const InputError& e) {
-    const std::string msg = e.what();
-    EXPECT_EQ(msg.rfind("scene.toml:", 0), 0u) << "names the file: " << msg;
-    for (const std::string& f : c.expect) EXPECT_NE(msg.find(f), std::string::npos) << c.what << ": missing '" << f << "' in: " << msg;
-  }
+  expect_rejected(c);
 }
 
 std::string sieve(const std::string& rows) { return with_size("distribution = \"sieve\"\nsieve = " + rows + "\n", false); }
