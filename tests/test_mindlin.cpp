@@ -17,6 +17,8 @@
 #include "contact/model_table.hpp"
 #include "sim/simulation.hpp"
 
+#include "mixed_path.hpp"
+
 namespace dem {
 namespace {
 
@@ -98,10 +100,11 @@ struct Rebound {
 
 // Two of the spheres meet at a relative speed of 3.9 m/s, `theta` degrees from the line of their
 // centres (along z at the first touch), in their centre-of-mass frame, with the step and duration
-// of tests/reference/oblique_impact/run_lammps.sh; the upper sphere's rebound.
-Rebound pair_impact(double theta, double restitution) {
+// of tests/reference/oblique_impact/run_lammps.sh; the upper sphere's rebound. `mixed`: through the
+// per-contact force loop (tests/mixed_path.hpp), which must give the same physics.
+Rebound pair_impact(double theta, double restitution, bool mixed = false) {
   Simulation sim;
-  sim.materials = MaterialTable({alumina(restitution)}, {});
+  sim.materials = alone_or_on_the_mixed_path(alumina(restitution), mixed);
   sim.params.gravity = Vec3::Zero();
   const double gap = 1e-6;
   sim.particles.add(0, Vec3(0, 0, kRadius + gap), kRadius, 4000, 0);
@@ -115,9 +118,9 @@ Rebound pair_impact(double theta, double restitution) {
 }
 
 // The sphere hits a plane of its own material at 3.9 m/s, `theta` degrees from the normal.
-Rebound wall_impact(double theta, double restitution) {
+Rebound wall_impact(double theta, double restitution, bool mixed = false) {
   Simulation sim;
-  sim.materials = MaterialTable({alumina(restitution)}, {});
+  sim.materials = alone_or_on_the_mixed_path(alumina(restitution), mixed);
   sim.params.gravity = Vec3::Zero();
   sim.walls.push_back(Wall{"floor", 0, {Vec3(-1, -1, 0), Vec3(1, -1, 0), Vec3(1, 1, 0), Vec3(-1, 1, 0)}, {}});
   sim.particles.add(0, Vec3(0, 0, kRadius + 1e-6), kRadius, 4000, 0);
@@ -152,12 +155,14 @@ TEST(Mindlin, ObliqueImpactsReboundAsInLammps) {
   const auto rows = read_csv(std::string(DEM_TEST_REFERENCE) + "/oblique_impact/lammps.csv");
   ASSERT_EQ(rows.size(), 16u);
   const double spin_scale = kSpeed / kRadius;
-  for (const auto& row : rows) {
-    const Rebound r = pair_impact(row[0], 1.0);
-    EXPECT_NEAR(r.vx, row[1], 1e-3 * kSpeed) << "theta " << row[0];
-    EXPECT_NEAR(r.vz, row[2], 1e-3 * kSpeed) << "theta " << row[0];
-    EXPECT_NEAR(r.omega_y, row[3], 1e-3 * spin_scale) << "theta " << row[0];
-  }
+  for (const bool mixed : {false, true})
+    for (const auto& row : rows) {
+      const Rebound r = pair_impact(row[0], 1.0, mixed);
+      const char* path = mixed ? ", mixed path" : "";
+      EXPECT_NEAR(r.vx, row[1], 1e-3 * kSpeed) << "theta " << row[0] << path;
+      EXPECT_NEAR(r.vz, row[2], 1e-3 * kSpeed) << "theta " << row[0] << path;
+      EXPECT_NEAR(r.omega_y, row[3], 1e-3 * spin_scale) << "theta " << row[0] << path;
+    }
 }
 
 // Where the sphere slides throughout (tan theta above 7/2 mu (1 + e): from 33 degrees), the
@@ -166,9 +171,10 @@ TEST(Mindlin, ObliqueImpactsReboundAsInLammps) {
 // Chung & Ooi's restitution 0.98. Measured: within 7e-6 of the incident speed and 1.7e-5 of
 // v / R (the first steps stick, before the spring reaches the limit); bound 1e-4 of those.
 TEST(Mindlin, SlidingImpactsFollowTheImpulseBalance) {
+  for (const bool mixed : {false, true})
   for (const double theta : {40.0, 50.0, 60.0, 70.0, 80.0, 85.0}) {
     const double t = theta * std::numbers::pi / 180;
-    const Rebound r = wall_impact(theta, 0.98);
+    const Rebound r = wall_impact(theta, 0.98, mixed);
     const double vn_sum = kSpeed * std::cos(t) + r.vz;
     EXPECT_NEAR(r.vx, kSpeed * std::sin(t) - kFriction * vn_sum, 1e-4 * kSpeed) << "theta " << theta;
     EXPECT_NEAR(r.omega_y, 2.5 * kFriction * vn_sum / kRadius, 1e-4 * kSpeed / kRadius) << "theta " << theta;

@@ -15,6 +15,8 @@
 #include "contact/model_table.hpp"
 #include "sim/simulation.hpp"
 
+#include "mixed_path.hpp"
+
 namespace dem {
 namespace {
 
@@ -34,10 +36,11 @@ Material rolling_material(RollingLaw rolling, double mu_r) {
 }
 
 // A sphere resting on a plane (z = 0) or on top of a sphere 10^6 times larger, fixed in place,
-// under gravity g (tilted along x for a slope), at its equilibrium overlap.
-Simulation resting_sphere(const Material& m, bool on_a_sphere, const Vec3& g) {
+// under gravity g (tilted along x for a slope), at its equilibrium overlap; through the compiled
+// force loop or the per-contact ("mixed") one.
+Simulation resting_sphere(const Material& m, bool on_a_sphere, const Vec3& g, bool mixed) {
   Simulation sim;
-  sim.materials = MaterialTable({m}, {});
+  sim.materials = alone_or_on_the_mixed_path(m, mixed);
   sim.params.gravity = g;
   const double u = kMass * -g.z() / kStiffness;  // overlap at rest
   if (on_a_sphere) {
@@ -58,9 +61,10 @@ int rolling_one(const Simulation& sim) { return static_cast<int>(sim.particles.s
 // sphere rolls, so only the normal force's oscillation about m g and the step's resolution of the
 // stopping point differ from the closed form.
 TEST(Rolling, ConstantTorqueStopsASphereWhereTheClosedFormSays) {
+  for (const bool mixed : {false, true})
   for (const bool on_a_sphere : {false, true}) {
     const double mu_r = 0.05, v0 = 0.2;
-    Simulation sim = resting_sphere(rolling_material(RollingLaw::ConstantTorque, mu_r), on_a_sphere, Vec3(0, 0, -kG));
+    Simulation sim = resting_sphere(rolling_material(RollingLaw::ConstantTorque, mu_r), on_a_sphere, Vec3(0, 0, -kG), mixed);
     const int k = rolling_one(sim);
     sim.particles.v[k] = Vec3(v0, 0, 0);
     sim.particles.w[k] = Vec3(0, v0 / kRadius, 0);  // rolling without slipping
@@ -76,7 +80,7 @@ TEST(Rolling, ConstantTorqueStopsASphereWhereTheClosedFormSays) {
       const double now = sim.particles.v[k].x();
       if (now <= 0) stopped_at = x_before + (sim.particles.x[k].x() - x_before) * before / (before - now) - x0;
     }
-    EXPECT_NEAR(stopped_at / distance, 1, 0.01) << (on_a_sphere ? "on a sphere" : "on a plane");
+    EXPECT_NEAR(stopped_at / distance, 1, 0.01) << (on_a_sphere ? "on a sphere" : "on a plane") << (mixed ? ", mixed" : "");
   }
 }
 
@@ -88,10 +92,11 @@ TEST(Rolling, ConstantTorqueStopsASphereWhereTheClosedFormSays) {
 // measured over two periods from the velocity's zero crossings. Bound 0.5 % (measured 4e-5: the
 // step is 1/200 of the period).
 TEST(Rolling, ElasticPlasticSpringRocksAtTheClosedFormFrequency) {
+  for (const bool mixed : {false, true})
   for (const bool on_a_sphere : {false, true}) {
     const double s = 3 - std::sqrt(6.5);
     const double period = 2 * std::numbers::pi / std::sqrt(s * kStiffness / kMass);
-    Simulation sim = resting_sphere(rolling_material(RollingLaw::ElasticPlastic, 0.3), on_a_sphere, Vec3(0, 0, -kG));
+    Simulation sim = resting_sphere(rolling_material(RollingLaw::ElasticPlastic, 0.3), on_a_sphere, Vec3(0, 0, -kG), mixed);
     const int k = rolling_one(sim);
     const double w0 = 0.01;  // small: the springs stay far below their limits (12 % and 12 %)
     sim.particles.w[k] = Vec3(0, w0, 0);
@@ -106,7 +111,7 @@ TEST(Rolling, ElasticPlasticSpringRocksAtTheClosedFormFrequency) {
       before = now;
     }
     ASSERT_EQ(crossings.size(), 5u);
-    EXPECT_NEAR((crossings[4] - crossings[0]) / (2 * period), 1, 5e-3) << (on_a_sphere ? "on a sphere" : "on a plane");
+    EXPECT_NEAR((crossings[4] - crossings[0]) / (2 * period), 1, 5e-3) << (on_a_sphere ? "on a sphere" : "on a plane") << (mixed ? ", mixed" : "");
   }
 }
 
@@ -120,10 +125,11 @@ TEST(Rolling, ElasticPlasticSpringRocksAtTheClosedFormFrequency) {
 // (measured -0.15 %: the springs still ring about the limit).
 TEST(Rolling, ElasticPlasticSpringHoldsBelowTheRollingLimit) {
   const double mu_r = 0.1;
+  for (const bool mixed : {false, true})
   for (const double ratio : {0.4, 1.2}) {
     const double slope = std::atan(ratio * mu_r);
     Simulation sim = resting_sphere(rolling_material(RollingLaw::ElasticPlastic, mu_r), false,
-                                    Vec3(kG * std::sin(slope), 0, -kG * std::cos(slope)));
+                                    Vec3(kG * std::sin(slope), 0, -kG * std::cos(slope)), mixed);
     sim.dt = 1e-5;
     const double x0 = sim.particles.x[0].x();
     for (int s = 0; s < 10000; ++s) sim.advance();
@@ -131,10 +137,10 @@ TEST(Rolling, ElasticPlasticSpringHoldsBelowTheRollingLimit) {
     for (int s = 0; s < 10000; ++s) sim.advance();
     const double moved = sim.particles.x[0].x() - x0;
     if (ratio < 1) {
-      EXPECT_LT(std::abs(moved), 4.5 * kMass * kG * std::sin(slope) / kStiffness) << "held";
+      EXPECT_LT(std::abs(moved), 4.5 * kMass * kG * std::sin(slope) / kStiffness) << "held" << (mixed ? ", mixed" : "");
     } else {
       const double a = 5.0 / 7.0 * kG * (std::sin(slope) - mu_r * std::cos(slope));
-      EXPECT_NEAR((sim.particles.v[0].x() - v_half) / (0.1 * a), 1, 5e-3) << "rolls";
+      EXPECT_NEAR((sim.particles.v[0].x() - v_half) / (0.1 * a), 1, 5e-3) << "rolls" << (mixed ? ", mixed" : "");
     }
   }
 }
