@@ -51,6 +51,9 @@ int main(int argc, char** argv) {
                     ->needs(grid);
   grid->needs(cell)->needs(width);
   app.add_option("--chains", o.chains, "force chains: one line per contact with its force (.vtp)");
+  app.add_option("--fragments", o.fragments,
+                 "fragments: the groups of particles joined by intact bonds, one row each with its mass, equivalent diameter and "
+                 "the mass passing (.csv)");
   app.add_option("--region", regions,
                  "averaging box box:x0,y0,z0,x1,y1,z1 [m], repeatable; the first also bounds the profile and the grid (default: the "
                  "bounding box of the spheres)")

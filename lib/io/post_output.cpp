@@ -1,5 +1,6 @@
 #include "io/post_output.hpp"
 
+#include <algorithm>
 #include <iomanip>
 
 #include "io/atomic_write.hpp"
@@ -45,7 +46,7 @@ void stress_values(std::ostream& out, const BoxAverage& r, bool kinetic) {
 
 void write_particle_fields_vtu(const std::string& path, const Particles& p, const std::vector<std::string>& material_names,
                                const std::vector<Mat3>& stress, const std::vector<Mat3>* kinetic, const std::vector<int>& coordination,
-                               const std::vector<Vec3>* u) {
+                               const std::vector<Vec3>* u, const FragmentSet* fragments) {
   const std::size_t n = p.size();
   std::vector<VtkArray> extra;
   std::vector<Mat3> total = stress;
@@ -57,6 +58,15 @@ void write_particle_fields_vtu(const std::string& path, const Particles& p, cons
   extra.push_back(std::move(pr));
   if (kinetic != nullptr) extra.push_back(tensors("kinetic_stress", *kinetic));
   extra.push_back(std::move(coord));
+  if (fragments != nullptr) {
+    VtkArray rank = scalars("fragment", n), size = scalars("fragment_particles", n);
+    for (std::size_t k = 0; k < n; ++k) {
+      rank.values[k] = fragments->of_slot[k];
+      size.values[k] = static_cast<double>(fragments->fragments[fragments->of_slot[k]].particles);
+    }
+    extra.push_back(std::move(rank));
+    extra.push_back(std::move(size));
+  }
   write_particles_vtu(path, p, material_names, u, extra);
 }
 
@@ -155,6 +165,36 @@ void write_stress_profile_csv(const std::string& path, const std::string& title,
           << r.solid_fraction;
       stress_values(out, r, kinetic);
       out << '\n';
+    }
+  });
+}
+
+void write_fragments_csv(const std::string& path, const std::string& title, const FragmentSet& f) {
+  // mass_passing of each fragment: the masses summed in order of equivalent diameter, a tie taking
+  // the sum at its last member (all of equal diameter pass together).
+  const std::size_t n = f.fragments.size();
+  std::vector<std::size_t> by_size(n);
+  for (std::size_t k = 0; k < n; ++k) by_size[k] = k;
+  std::stable_sort(by_size.begin(), by_size.end(), [&](std::size_t a, std::size_t b) {
+    return f.fragments[a].equivalent_diameter() < f.fragments[b].equivalent_diameter();
+  });
+  double total = 0;
+  for (const Fragment& x : f.fragments) total += x.mass;
+  std::vector<double> passing(n);
+  double sum = 0;
+  for (std::size_t k = 0; k < n;) {
+    std::size_t e = k;
+    const double d = f.fragments[by_size[k]].equivalent_diameter();
+    while (e < n && f.fragments[by_size[e]].equivalent_diameter() == d) sum += f.fragments[by_size[e++]].mass;
+    for (; k < e; ++k) passing[by_size[k]] = sum / total;
+  }
+  write_text_atomically(path, [&](std::ostream& out) {
+    out << "# " << title << '\n';
+    out << "rank,first_id,particles,mass,equivalent_diameter,x,y,z,mass_passing\n" << std::setprecision(10);
+    for (std::size_t k = 0; k < n; ++k) {
+      const Fragment& x = f.fragments[k];
+      out << k << ',' << x.first_id << ',' << x.particles << ',' << x.mass << ',' << x.equivalent_diameter() << ',' << x.centre[0] << ','
+          << x.centre[1] << ',' << x.centre[2] << ',' << passing[k] << '\n';
     }
   });
 }

@@ -8,17 +8,19 @@
 #include "post/coarse_grain.hpp"
 #include "post/contact_forces.hpp"
 #include "post/displacement.hpp"
+#include "post/fragments.hpp"
 #include "post/stress.hpp"
 #include "state/particles.hpp"
 
 namespace dem {
 
 // Particles (write_particles_vtu's arrays) plus: stress (9 components: the contact part, plus the
-// kinetic part when `kinetic` is given), kinetic_stress (when given), pressure, coordination.
+// kinetic part when `kinetic` is given), kinetic_stress (when given), pressure, coordination, and
+// with `fragments`: fragment (its rank, 0 the largest by mass) and fragment_particles.
 // `u`: per-particle displacement or null.
 void write_particle_fields_vtu(const std::string& path, const Particles& p, const std::vector<std::string>& material_names,
                                const std::vector<Mat3>& stress, const std::vector<Mat3>* kinetic, const std::vector<int>& coordination,
-                               const std::vector<Vec3>* u);
+                               const std::vector<Vec3>* u, const FragmentSet* fragments = nullptr);
 
 // Grid fields: density, solid_fraction, velocity, stress (contact + kinetic when `kinetic`),
 // pressure, kinetic_stress (when `kinetic`), and with a displacement: displacement,
@@ -36,6 +38,10 @@ void write_average_csv(const std::string& path, const std::string& title, const 
                        bool displacement);
 void write_stress_profile_csv(const std::string& path, const std::string& title, const std::vector<BoxAverage>& rows, int axis,
                               bool kinetic);
+// One row per fragment, largest mass first: rank, first_id, particles, mass, equivalent_diameter,
+// centre x, y, z, and mass_passing: the fraction of all mass in fragments of equivalent diameter at
+// most this one's (a grading curve).
+void write_fragments_csv(const std::string& path, const std::string& title, const FragmentSet& f);
 void write_displacement_profile_csv(const std::string& path, const std::string& title, const std::vector<ProfileRow>& rows, int axis);
 
 }  // namespace dem

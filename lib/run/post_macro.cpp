@@ -15,6 +15,7 @@
 #include "post/coarse_grain.hpp"
 #include "post/contact_forces.hpp"
 #include "post/displacement.hpp"
+#include "post/fragments.hpp"
 #include "post/kernel.hpp"
 #include "run/setup.hpp"
 
@@ -99,7 +100,7 @@ void check_post_options(const PostOptions& o) {
   std::set<std::filesystem::path> seen;
   for (const std::string* f : {&o.reference, &o.in})
     if (!f->empty()) seen.insert(canonical(*f));
-  for (const std::string* f : {&o.vtk, &o.csv, &o.stress_csv, &o.average_csv, &o.grid, &o.chains}) {
+  for (const std::string* f : {&o.vtk, &o.csv, &o.stress_csv, &o.average_csv, &o.grid, &o.chains, &o.fragments}) {
     if (f->empty()) continue;
     if (!seen.insert(canonical(*f)).second)
       throw InputError("output " + *f + " is named twice, or is an input: give each output its own file");
@@ -115,6 +116,7 @@ void post_macro(const PostOptions& o) {
   check_output_file(o.average_csv, "--average-csv");
   check_output_file(o.grid, "--grid");
   check_output_file(o.chains, "--chains");
+  check_output_file(o.fragments, "--fragments");
   const auto t0 = Clock::now();
   const Simulation cur = load_state(o.in);
   const Particles& p = cur.particles;
@@ -149,8 +151,10 @@ void post_macro(const PostOptions& o) {
                            "show everything the kernel resolves\n", o.cell, o.width);
   }
 
+  // Fragments: when asked, and in the particles' file of a state that holds bonds.
+  const bool fragments_wanted = !o.fragments.empty() || (!o.vtk.empty() && cur.has_bonds());
   const bool stress_wanted = !o.vtk.empty() || !o.stress_csv.empty() || !o.average_csv.empty() || !o.grid.empty() || !o.chains.empty() ||
-                             o.csv.empty();
+                             o.csv.empty() || fragments_wanted;
   ContactForceSet forces;
   ParticleStress ps;
   auto t = Clock::now();
@@ -158,6 +162,8 @@ void post_macro(const PostOptions& o) {
   const double force_seconds = seconds_since(t);
   t = Clock::now();
   if (stress_wanted) ps = particle_stress(p, forces);
+  FragmentSet fragments;
+  if (fragments_wanted) fragments = find_fragments(p, forces);
   const double stress_seconds = seconds_since(t);
   t = Clock::now();
   GridFields fields;
@@ -174,7 +180,8 @@ void post_macro(const PostOptions& o) {
   for (const Material& m : cur.materials.materials()) names.push_back(m.name);
   if (!o.vtk.empty()) {
     const std::vector<Mat3> kin = o.kinetic ? particle_kinetic_stress(p) : std::vector<Mat3>{};
-    write_particle_fields_vtu(o.vtk, p, names, particle_stress_tensors(p, ps), o.kinetic ? &kin : nullptr, ps.contacts, u);
+    write_particle_fields_vtu(o.vtk, p, names, particle_stress_tensors(p, ps), o.kinetic ? &kin : nullptr, ps.contacts, u,
+                              fragments_wanted ? &fragments : nullptr);
   }
   if (!o.grid.empty()) write_grid_fields_vti(o.grid, fields, o.kinetic);
   if (!o.chains.empty()) write_force_chains_vtp(o.chains, p, forces);
@@ -189,6 +196,8 @@ void post_macro(const PostOptions& o) {
     write_stress_profile_csv(o.stress_csv, "stress profile of " + when.str() + " over " + box_text(main_box) + ": " + part + " in " + units,
                              rows, o.axis, o.kinetic);
   }
+  if (!o.fragments.empty())
+    write_fragments_csv(o.fragments, "fragments of " + when.str() + ": groups of particles joined by intact bonds; mass kg, lengths m", fragments);
   if (!o.csv.empty()) {
     std::ostringstream title;
     title << "displacement profile from " << o.reference << " (t = " << ref_time << " s) to " << o.in << " (t = " << cur.time
@@ -208,6 +217,13 @@ void post_macro(const PostOptions& o) {
                 "szz %.6g Pa\n",
                 p.size(), forces.pairs(), forces.walls(), part.c_str(), box_text(main_box).c_str(), pressure_of(s) + 0.0, deviatoric_q(s),
                 s(2, 2) + 0.0);  // + 0.0: no "-0"
+  }
+  if (fragments_wanted && !fragments.fragments.empty()) {
+    const Fragment& big = fragments.fragments.front();
+    double total = 0;
+    for (const Fragment& f : fragments.fragments) total += f.mass;
+    std::printf("post-macro: %zu fragments (%zu intact bonds); the largest holds %zu particles, %.4g %% of the mass\n",
+                fragments.fragments.size(), fragments.intact_bonds, big.particles, 100 * big.mass / total);
   }
   if (!o.grid.empty())
     std::printf("post-macro: grid %ld x %ld x %ld nodes, cell %g m, kernel width %g m (Lucy, support radius %g m)\n", grid.n[0], grid.n[1],

@@ -18,6 +18,7 @@ struct PostOptions {
   double cell = 0;          // grid spacing [m]
   double width = 0;         // kernel width w (standard deviation of the Gaussian) [m]
   std::string chains;       // force chains (.vtp)
+  std::string fragments;    // fragment table: groups of particles joined by intact bonds (.csv)
   std::vector<Box> regions; // averaging boxes; the first also bounds the profile and the grid.
                             // Empty: the bounding box of the spheres.
   bool kinetic = false;     // add the kinetic stress to the contact stress
