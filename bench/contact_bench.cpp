@@ -1,5 +1,5 @@
 // Contact-physics benchmarks (issue "Contact physics"):
-//   contact_bench frac-sweep   speed against error: for each FRAC of eq. 2.48, the restitution and
+//   contact_bench frac-sweep   speed against error: for each FRAC of docs/physics.md eq. P5, the restitution and
 //                              contact-duration errors of a binary collision and the cost per
 //                              simulated second of a 10,000-sphere settling scene
 //   contact_bench variants     the price of each physics option on one packing: plain linear

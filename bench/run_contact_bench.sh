@@ -11,7 +11,7 @@ out=bench/results/contact.md
   echo "Measured $(date -u +%Y-%m-%d) on $(nproc) cores ($(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')),"
   echo "dem $(build/tools/run-stage --version | awk '{print $NF}'), g++ -O3. Reproduce: \`bash bench/run_contact_bench.sh\`."
   echo
-  echo "## Speed against error (FRAC of eq. 2.48)"
+  echo "## Speed against error (FRAC of docs/physics.md eq. P5)"
   echo
   echo "Binary collision of two 1 mm glass spheres (k_n = 2000 N/m) against the analytic restitution"
   echo "eta and damped half-period pi/omega_d; cost per simulated second of the 10,000-sphere settle"

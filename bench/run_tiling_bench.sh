@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Generation by tiling against settling the whole sample at once (SPEC §9, thesis §3.3: "copies are
+# Generation by tiling against settling the whole sample at once (thesis §3.3: "copies are
 # cheaper"); writes bench/results/tiling.md.
 # Usage: bash bench/run_tiling_bench.sh [THREADS] [SIZES]   (from the repository root)
 #   default: 1 thread, SIZES="100000 1000000" (about 1.5 hours on one core of this VM); needs

@@ -2,7 +2,7 @@
 """Damping check (thesis §2.4, figs. 2.14-2.15): a sphere released at rest, tangent to a
 horizontal wall, oscillates in the contact spring. The exact answer is the damped oscillator
     m·u'' = m·g − kn·u − cn·u',  u(0) = u'(0) = 0,
-    cn = 2·γ·sqrt(m·kn),  γ = −ln η / sqrt(π² + ln² η)     (eq. 2.27-2.29, wall: m* = m),
+    cn = 2·γ·sqrt(m·kn),  γ = −ln η / sqrt(π² + ln² η)     (docs/physics.md eq. P14-P15, wall: m* = m),
 whose velocity is u'(t) = (g/ω_d)·exp(−γ·ω·t)·sin(ω_d·t), ω = sqrt(kn/m), ω_d = ω·sqrt(1 − γ²):
 each half swing's velocity amplitude is η times the previous one. Compares run-stage's --track
 CSV with it, writes a summary CSV and a plot of velocity against time; --check fails (exit 1)
@@ -12,6 +12,10 @@ import argparse
 import csv
 import math
 import sys
+
+from debian_python import ensure  # noqa: E402
+
+ensure("h5py", "numpy", "matplotlib")
 
 import h5py
 import numpy as np

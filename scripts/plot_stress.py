@@ -12,37 +12,54 @@ usage: plot_stress.py TABLE.csv OUT.png
 """
 import sys
 
+from debian_python import ensure  # noqa: E402
+
+ensure("numpy", "matplotlib")
+
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-from post_table import read_table, save_atomically  # noqa: E402
+from post_table import AXIS_WORDS, read_table, save_atomically, source_note  # noqa: E402
+
+
+def labels(title: str, header) -> dict:
+    """The figure's words: a title that says what is plotted, the axes with their units."""
+    part = "contact + kinetic stress" if "contact + kinetic" in title else "contact stress"
+    if header[0] == "region":
+        return {"title": f"Mean {part} in each averaging box", "subtitle": source_note(title), "xlabel": "averaging box",
+                "ylabel": "stress [Pa] (tension positive; p, q positive in compression)"}
+    axis = header[0].split("_")[0]
+    return {"title": f"Mean {part} in slabs along {axis}", "subtitle": source_note(title),
+            "xlabel": "stress [Pa] (tension positive; p positive in compression)", "ylabel": f"{AXIS_WORDS[axis]} of the slab centre [mm]"}
 
 
 def main(csv_path: str, png_path: str) -> None:
     title, header, data, col = read_table(csv_path)
+    words = labels(title, header)
     fig, ax = plt.subplots(figsize=(5.5, 4.5), dpi=120)
-    names = (("sxx", r"$\sigma_{xx}$"), ("syy", r"$\sigma_{yy}$"), ("szz", r"$\sigma_{zz}$"), ("pressure", "$p$"))
+    names = (("sxx", r"$\sigma_{xx}$"), ("syy", r"$\sigma_{yy}$"), ("szz", r"$\sigma_{zz}$"), ("pressure", "pressure $p$"))
     if header[0] == "region":  # box averages
         x = np.arange(len(data))
-        shown = names + (("q", "$q$"),)
+        shown = names + (("q", "von Mises $q$"),)
         width = 0.8 / len(shown)
         for k, (name, label) in enumerate(shown):
             ax.bar(x + (k - (len(shown) - 1) / 2) * width, data[:, col[name]], width, label=label)
         ax.set_xticks(x, [f"region {int(r)}" for r in data[:, 0]])
-        ax.set_ylabel("stress [Pa] (tension positive)")
+        ax.set_ylabel(words["ylabel"])
+        ax.set_xlabel(words["xlabel"])
         ax.axhline(0, color="grey", lw=0.8)
     else:  # profile along an axis
-        axis = header[0].split("_")[0]
         used = data[:, col["count"]] > 0
         z = data[used, 0] * 1e3
         for name, label in names:
             ax.plot(data[used, col[name]], z, marker="o", label=label)
         ax.axvline(0, color="grey", lw=0.8)
-        ax.set_xlabel("stress [Pa] (tension positive)")
-        ax.set_ylabel(f"{axis} [mm]")
-    ax.set_title(title, fontsize=6, wrap=True)
+        ax.set_xlabel(words["xlabel"])
+        ax.set_ylabel(words["ylabel"])
+    fig.suptitle(words["title"], fontsize=10)
+    ax.set_title(words["subtitle"], fontsize=6, wrap=True)
     ax.legend()
     save_atomically(fig, png_path)
     plt.close(fig)

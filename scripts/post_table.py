@@ -2,6 +2,7 @@
 and saving figures atomically."""
 import csv
 import os
+import re
 
 import numpy as np
 
@@ -30,3 +31,13 @@ def save_atomically(fig, png_path: str) -> None:
     fig.tight_layout()
     fig.savefig(png_path + ".tmp.png")
     os.replace(png_path + ".tmp.png", png_path)
+
+
+AXIS_WORDS = {"x": "position x", "y": "position y", "z": "height z"}
+
+
+def source_note(title: str) -> str:
+    """post-macro's '# title' line as a subtitle: checkpoint paths cut to their file names and the
+    unit notes left out (the axis labels give the units)."""
+    note = re.sub(r"\S*/([^/\s]+\.h5)", r"\1", title)
+    return re.sub(r";\s*lengths.*$", "", note).strip()

@@ -11,6 +11,10 @@ the vibration amplitude (1.9 mm at 20 Hz, 3 g).
 import argparse
 import csv
 
+from debian_python import ensure  # noqa: E402
+
+ensure("h5py", "numpy", "matplotlib")
+
 import h5py
 import numpy as np
 

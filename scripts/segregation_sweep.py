@@ -7,6 +7,10 @@ the per-cycle mean height of every run.
 import argparse
 import math
 
+from debian_python import ensure  # noqa: E402
+
+ensure("h5py", "numpy", "matplotlib")
+
 import numpy as np
 
 import matplotlib

@@ -25,6 +25,10 @@ import math
 import os
 import xml.etree.ElementTree as ET
 
+from debian_python import ensure  # noqa: E402
+
+ensure("h5py", "numpy", "matplotlib", "vtk")
+
 import h5py
 import numpy as np
 import vtk

@@ -13,6 +13,7 @@ def main(path, expect_writer):
         assert int(f.attrs["schema_version"]) == 4
         assert f.attrs["writer"].decode() == expect_writer, f.attrs["writer"]
         assert len(f.attrs["writer_version"]) > 0
+        assert len(f.attrs["writer_commit"]) > 0  # git describe of the build, or "unknown"
 
         n = f["particles/id"].shape[0]
         m = f["materials/name"].shape[0]

@@ -40,6 +40,12 @@ print("kinetic ok")
 PY
 grep -q "contact + kinetic stress" "$tmp/k.csv" || { echo "k.csv does not say it holds the kinetic part"; fail=1; }
 
+# --quiet, as the other tools: the same files, nothing on stdout.
+"$bin/post-macro" --in "$tmp/settled.h5" --vtk "$tmp/q.vtu" --average-csv "$tmp/q.csv" --kinetic --quiet > "$tmp/log" 2> "$tmp/err" \
+  || { cat "$tmp/log" "$tmp/err"; exit 1; }
+if [ ! -s "$tmp/log" ] && [ ! -s "$tmp/err" ] && cmp -s "$tmp/q.csv" "$tmp/k.csv"; then echo "ok   --quiet: the same table, nothing printed"
+else echo "FAIL --quiet printed:"; cat "$tmp/log" "$tmp/err"; fail=1; fi
+
 # Bad command lines: exit 2 (3 for the grid too large), the message, nothing written.
 check() {  # check NAME CODE PATTERN -- args...
   local name=$1 want=$2 pattern=$3; shift 4
@@ -67,6 +73,7 @@ check "output over the input" 2 "is named twice, or is an input" -- "${in[@]}" -
 check "bins 0" 2 "--bins: Value 0 not in range" -- "${in[@]}" --stress-csv "$b/s.csv" --bins 0
 check "grid too large" 3 "nodes over .* is more than the limit of 1e8" -- "${in[@]}" --grid "$b/g.vti" --cell 1e-6 --width 1e-6 --vtk "$b/p.vtu"
 check "missing checkpoint" 2 "File does not exist" -- --in "$tmp/none.h5" --vtk "$b/p.vtu"
+check "missing reference checkpoint" 2 "File does not exist" -- --in "$tmp/shaken.h5" --reference "$tmp/none.h5" --vtk "$b/p.vtu"
 ls "$tmp"/*.tmp "$out"/*.tmp 2>/dev/null && { echo "temporary files left behind"; fail=1; }
 [ $fail -eq 0 ] && echo "post-macro ok"
 exit $fail

@@ -33,7 +33,9 @@ cp "$tmp/r.restart.h5" "$tmp/saved.restart.h5"
 resume() { "$bin/run-stage" --scene "$1" --stage long --in "$2" --out "$tmp/r.h5" --checkpoint-every 200 --restart --quiet; }
 
 check "restart from another --in refused" 3 "r.restart.h5 was started from a different input: --in .*a.h5 (crc32=.*) then, --in .*b.h5 (crc32=.*) now (to start the stage over from --in, delete .*r.restart.h5" -- resume "$scene" "$tmp/b.h5"
-check "restart with --in missing refused" 3 "cannot be read to compare" -- resume "$scene" "$tmp/none.h5"
+echo "not a checkpoint" > "$tmp/text.h5"
+check "restart with an unreadable --in refused" 3 "cannot be read to compare" -- resume "$scene" "$tmp/text.h5"
+check "restart with --in missing refused" 2 "--in: File does not exist" -- resume "$scene" "$tmp/none.h5"
 sed 's/ 10/ 11/g' "$src/data/cube.stl" > "$tmp/region.stl"  # a larger cube
 check "restart after a file the scene reads changed refused" 3 "the file .*region.stl the scene reads held other bytes (fnv1a64=" -- resume "$scene" "$tmp/a.h5"
 cp "$src/data/cube.stl" "$tmp/region.stl"

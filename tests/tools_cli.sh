@@ -7,14 +7,14 @@ tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 source "$(dirname "$0")/check_lib.sh"  # check NAME EXPECTED_CODE PATTERN -- command...
 for t in gen-primary copy-settle compact run-stage post-macro; do
   check "$t --help" 0 "--scene\|--reference" -- "$bin/$t" --help
-  check "$t --version" 0 "0\.1\.0" -- "$bin/$t" --version
+  check "$t --version" 0 "^$t (dem) 0\.1\.0 (commit [0-9A-Za-z._-]*)$" -- "$bin/$t" --version
   check "$t missing required option" 2 "is required" -- "$bin/$t"
 done
 for t in gen-primary copy-settle compact; do
   args=(--scene "$data/small.toml" --out "$tmp/x.h5"); [ $t = gen-primary ] || args+=(--in "$data/small.toml")
   check "$t unknown option" 2 "not expected: --bogus" -- "$bin/$t" "${args[@]}" --bogus
 done
-check "run-stage unknown option" 2 "not expected: --bogus" -- "$bin/run-stage" --scene "$data/small.toml" --stage s --in a --out b --bogus
+check "run-stage unknown option" 2 "not expected: --bogus" -- "$bin/run-stage" --scene "$data/small.toml" --stage s --in "$data/small.toml" --out b --bogus
 check "post-macro bad axis" 2 "--axis" -- "$bin/post-macro" --reference "$data/small.toml" --in "$data/small.toml" --axis w
 
 # Scene errors: exit 3, file:line in the message, no output written.
@@ -27,7 +27,14 @@ check "missing scene file" 2 "File does not exist" -- "$bin/gen-primary" --scene
 
 # Checkpoint errors: exit 4 with the reason.
 "$bin/gen-primary" --scene "$data/small.toml" --out "$tmp/a.h5" --quiet > /dev/null || { echo "FAIL gen-primary"; exit 1; }
-check "missing checkpoint" 4 "no such checkpoint" -- "$bin/run-stage" --scene "$data/small.toml" --stage shake --in "$tmp/none.h5" --out "$tmp/b.h5"
+# A missing input file is a bad command line for every tool (exit 2, README "Exit codes"), before
+# anything is read or written.
+check "run-stage missing --in" 2 "--in: File does not exist: .*none.h5" -- "$bin/run-stage" --scene "$data/small.toml" --stage shake --in "$tmp/none.h5" --out "$tmp/b.h5"
+check "copy-settle missing --in" 2 "--in: File does not exist: .*none.h5" -- "$bin/copy-settle" --scene "$data/small.toml" --in "$tmp/none.h5" --out "$tmp/b.h5"
+check "compact missing --in" 2 "--in: File does not exist: .*none.h5" -- "$bin/compact" --scene "$data/small.toml" --in "$tmp/none.h5" --out "$tmp/b.h5"
+check "post-macro missing --in" 2 "--in: File does not exist: .*none.h5" -- "$bin/post-macro" --in "$tmp/none.h5" --vtk "$tmp/b.vtu"
+[ -e "$tmp/b.h5" ] || [ -e "$tmp/b.vtu" ] && { echo "FAIL output written after a missing --in"; fail=1; }
+# Where the file is there but is no checkpoint, it is a file error (exit 4).
 echo "not hdf5" > "$tmp/text.h5"
 check "text file as checkpoint" 4 "not a dem checkpoint" -- "$bin/run-stage" --scene "$data/small.toml" --stage shake --in "$tmp/text.h5" --out "$tmp/b.h5"
 head -c 20000 "$tmp/a.h5" > "$tmp/cut.h5"

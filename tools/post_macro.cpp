@@ -62,6 +62,7 @@ int main(int argc, char** argv) {
   app.add_flag("--kinetic,!--no-kinetic", o.kinetic, "add the kinetic stress -sum m v'v' / V to the contact stress (default: contact only)");
   app.add_option("--axis", axis, "profile axis")->check(CLI::IsMember({"x", "y", "z"}));
   app.add_option("--bins", o.bins, "profile bins")->check(CLI::Range(1, 100000));
+  app.add_flag("--quiet", o.quiet, "no summary on stdout (warnings and errors still go to stderr)");
   app.callback([&] {  // checks across options: a bad command line (exit 2), nothing read or written yet
     o.axis = axis[0] - 'x';
     try {

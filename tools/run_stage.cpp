@@ -9,7 +9,7 @@ int main(int argc, char** argv) {
   int threads = 0;
   app.add_option("--scene", o.scene, "scene file (TOML)")->required()->check(CLI::ExistingFile);
   app.add_option("--stage", o.stage, "name of the [[stage]] to run")->required();
-  app.add_option("--in", o.in, "input checkpoint (HDF5)")->required();
+  app.add_option("--in", o.in, "input checkpoint (HDF5)")->required()->check(CLI::ExistingFile);
   app.add_option("--out", o.out, "output checkpoint (HDF5), written atomically when the stage completes")->required();
   app.add_option("--vtk", o.vtk_dir, "directory for VTK frames and .pvd series");
   app.add_option("--checkpoint-every", o.checkpoint_every, "steps between periodic checkpoints (OUT with .restart.h5)")

@@ -14,7 +14,7 @@
 namespace dem {
 
 inline void add_common_options(CLI::App& app, int& threads) {
-  app.set_version_flag("--version", std::string(app.get_name()) + " (dem) " + kVersion);
+  app.set_version_flag("--version", std::string(app.get_name()) + " (dem) " + kVersion + " (commit " + kCommit + ")");
   app.add_option("--threads", threads, "OpenMP threads (0 = OMP_NUM_THREADS or all cores); results are identical for any count")
       ->check(CLI::NonNegativeNumber);
 }

@@ -36,7 +36,7 @@ struct ViscousDamping {
   }
   static constexpr PropertyKey keys[] = {
       {.keyword = "restitution", .number = &ContactProperties::restitution, .lo = 0, .hi = 1, .lo_open = true,
-       .unit = "(eta_n, eq. 2.29)", .si_unit = "1", .mixing = &MixingRules::restitution, .default_value = 1},
+       .unit = "(eta_n, docs/physics.md eq. P14)", .si_unit = "1", .mixing = &MixingRules::restitution, .default_value = 1},
       {.keyword = "no_viscous_attraction", .flag = &ContactProperties::no_viscous_attraction}};
   static void derive(PairParams& p, const PairProperties& pair) {
     const ContactProperties& q = pair.mixed;

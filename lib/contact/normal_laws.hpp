@@ -37,7 +37,7 @@ inline constexpr PropertyKey kTensileStrengthKey{.keyword = "tensile_strength", 
                                                  .hi = std::numeric_limits<double>::infinity(), .unit = "N (F, bonded contacts)",
                                                  .si_unit = "N", .mixing = &MixingRules::strength};
 inline constexpr PropertyKey kMendesEpsilonKey{.keyword = "epsilon", .number = &ContactProperties::epsilon, .lo = 0, .hi = 1,
-                                               .lo_open = true, .hi_open = true, .unit = "(mendes law, eq. 2.23)", .si_unit = "1",
+                                               .lo_open = true, .hi_open = true, .unit = "(mendes law, docs/physics.md eq. P12)", .si_unit = "1",
                                                .mixing = &MixingRules::strength, .default_value = 1e-4};
 
 // The energy bound of the linear compression every law shares: ½ kn u² [J].

@@ -1,5 +1,5 @@
 #pragma once
-// One step of motion (eq. 2.38-2.47) once the force loop has summed each particle's net load
+// One step of motion (docs/physics.md eq. P3-P4; thesis eq. 2.38-2.47) once the force loop has summed each particle's net load
 // (forces/force_loop.hpp ForceBlocks): its new velocities and position. Four particles at a time with
 // AVX2 (simd/simd.hpp) where the processor has it, else one by one: per coordinate the same
 // operations in the same order, so the same bits.

@@ -634,6 +634,7 @@ void write_all(Writer& w, const Simulation& sim, const CheckpointMeta& meta) {
   w.int_attribute(f, "schema_version", kCheckpointSchema);
   w.string_attribute(f, "writer", meta.writer);
   w.string_attribute(f, "writer_version", kVersion);
+  w.string_attribute(f, "writer_commit", kCommit);  // for the record; a restart compares the version only
   Store io(w);
   scene_datasets(io, meta);
   const PeriodicBox& box = sim.periodic;

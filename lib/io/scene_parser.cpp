@@ -308,8 +308,8 @@ void read_simulation(TableReader& top, Scene& sc) {
   if (!t) return;
   TableReader r(*t, top.file(), "simulation");
   SimulationSpec& s = sc.simulation;
-  s.time_step = r.number_or("time_step", 0.0, 0, kInf, "s (0 = automatic, eq. 2.48)");
-  s.frac = r.number_or("frac", s.frac, 0, 1, "(fraction of the critical step, eq. 2.48)", true);
+  s.time_step = r.number_or("time_step", 0.0, 0, kInf, "s (0 = automatic, docs/physics.md eq. P5)");
+  s.frac = r.number_or("frac", s.frac, 0, 1, "(fraction of the critical step, docs/physics.md eq. P5)", true);
   s.force_time_step = r.boolean_or("force_time_step", false);
   s.gravity = r.vec3_or("gravity", s.gravity);
   s.alpha_r = r.number_or("alpha_r", 0.0, 0, kInf, "1/s");

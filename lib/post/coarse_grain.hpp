@@ -1,5 +1,5 @@
 #pragma once
-// Coarse-grained continuum fields on a regular grid (SPEC §11; Goldhirsch 2010, Weinhart et al.
+// Coarse-grained continuum fields on a regular grid (docs/physics.md eq. P27; Goldhirsch 2010, Weinhart et al.
 // 2012), with Lucy's kernel phi of post/kernel.hpp (standard deviation w along each axis, support
 // radius c = sqrt(12) w):
 //   density         rho(r) = sum_p m_p phi(r - x_p)                                   [kg/m^3]

@@ -1,5 +1,5 @@
 #pragma once
-// Love-Weber stress (SPEC §11): per particle, and averaged over boxes (regions, slabs of a profile).
+// Love-Weber stress (docs/physics.md eq. P26): per particle, and averaged over boxes (regions, slabs of a profile).
 //
 // Convention (docs/post.md): tension positive, compression negative (continuum mechanics), and
 // the force index first, as SPEC §11 writes sigma = (1/V) sum_c f_c (x) l_c:

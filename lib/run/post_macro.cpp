@@ -206,6 +206,7 @@ void post_macro(const PostOptions& o) {
   }
 
   const double write_seconds = seconds_since(t);
+  if (o.quiet) return;  // warnings and errors (stderr) still come
 
   if (u != nullptr)
     std::printf("post-macro: %zu particles matched by id, %zu removed since the reference, %zu new; t = %.6g s -> %.6g s\n", d.matched,

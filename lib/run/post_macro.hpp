@@ -24,6 +24,7 @@ struct PostOptions {
   bool kinetic = false;     // add the kinetic stress to the contact stress
   int axis = 2;             // profile axis
   int bins = 20;
+  bool quiet = false;       // no summary on stdout (warnings still go to stderr)
 };
 
 // Parses "box:x0,y0,z0,x1,y1,z1" (x1 > x0 etc.); throws InputError saying what is wrong.

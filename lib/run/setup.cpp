@@ -148,22 +148,22 @@ void check_inside_walls(const Simulation& sim, const Scene& scene, const std::st
 double choose_time_step(const Simulation& sim, const SimulationSpec& spec) {
   const double critical = sim.critical_time_step();
   if (spec.time_step == 0) {
-    if (!std::isfinite(critical)) throw InputError("cannot compute the time step of eq. 2.48: no particles or no stiffness");
+    if (!std::isfinite(critical)) throw InputError("cannot compute the time step of docs/physics.md eq. P5: no particles or no stiffness");
     return spec.frac * critical;
   }
   if (spec.time_step > critical && !spec.force_time_step) {
     std::ostringstream m;
     m << "simulation.time_step = " << spec.time_step << " s exceeds the critical time step " << critical
-      << " s of eq. 2.48 (2 sqrt(M_min / (2 K_max))); lower it, omit it for the automatic step, or set "
+      << " s of docs/physics.md eq. P5 (2 sqrt(M_min / (2 K_max))); lower it, omit it for the automatic step, or set "
          "simulation.force_time_step = true";
     throw InputError(m.str());
   }
   if (spec.time_step > critical)
     std::cerr << "warning: forced time step " << spec.time_step << " s exceeds the critical step " << critical
-              << " s of eq. 2.48: expect an unstable run\n";
+              << " s of docs/physics.md eq. P5: expect an unstable run\n";
   else if (spec.time_step > 0.2 * critical)  // as frac > 0.2, which the parser refuses unless forced
     std::cerr << "warning: simulation.time_step = " << spec.time_step << " s is " << spec.time_step / critical
-              << " of the critical step " << critical << " s of eq. 2.48: above 0.2 a contact lasts fewer than 8 steps and the "
+              << " of the critical step " << critical << " s of docs/physics.md eq. P5: above 0.2 a contact lasts fewer than 8 steps and the "
                  "results are wrong (README, \"Which FRAC buys which accuracy\")\n";
   return spec.time_step;
 }

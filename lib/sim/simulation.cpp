@@ -114,7 +114,7 @@ void Simulation::report_overlap(double worst) const {
       m << "between particle " << p.id[i] << " and wall " << walls[walls_.slot_j[k]].name << ", ";
   }
   m << "with dt = " << dt << " s against the critical " << critical_time_step()
-    << " s of eq. 2.48";
+    << " s of docs/physics.md eq. P5";
   throw PhysicsError(m.str(), "lower the time step (frac), raise the stiffness kn, or lower the load or impact speed");
 }
 
@@ -363,7 +363,7 @@ void Simulation::integrate(bool any_fixed) {
     const Particles& p = particles;
     std::ostringstream m;
     m << "non-finite state at step " << step << " (t = " << time << " s) for particle id " << p.id[bad] << ", with dt = " << dt
-      << " s against the critical " << critical_time_step() << " s of eq. 2.48";
+      << " s against the critical " << critical_time_step() << " s of docs/physics.md eq. P5";
     throw PhysicsError(m.str(), "check the time step and the stiffnesses");
   }
 }
@@ -408,7 +408,7 @@ void Simulation::report_energy_gain() const {
     << b.scale() << " J); the most energetic particle is id " << p.id[top] << " (speed " << p.v[top].norm() << " m/s, spin "
     << p.w[top].norm() << " rad/s, " << (top_e > 0 ? 100 * top_rot / top_e : 0) << " % of its energy in rotation), with dt = " << dt
     << " s against the critical " << critical_time_step()
-    << " s of eq. 2.48";
+    << " s of docs/physics.md eq. P5";
   throw PhysicsError(m.str(), "lower the time step (frac), or check kn and kt (kt acts on the spin as well, which needs a shorter step)");
 }
 

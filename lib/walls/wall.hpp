@@ -1,5 +1,5 @@
 #pragma once
-// Rigid walls made of convex planar elements: triangles or quadrilaterals (SPEC §3). A mesh wall
+// Rigid walls made of convex planar elements: triangles or quadrilaterals (docs/physics.md eq. P21-P23). A mesh wall
 // (cylinder, cone, STL, ...) is many elements sharing one motion. Motion is prescribed, not
 // integrated, so an element's position is a closed-form function of time (exact on restart).
 #include <array>
