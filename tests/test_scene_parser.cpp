@@ -103,6 +103,18 @@ TEST(SceneParser, ValidSceneParses) {
   EXPECT_DOUBLE_EQ(s.stages[0].motions[0].motion.amplitude, 29.43 / (w * w)) << "acceleration -> amplitude A = a / (2 pi f)^2";
 }
 
+// A stage's own gravity (docs/scene.md, [[stage]]): read where given, absent otherwise; three
+// finite numbers, as [simulation] gravity.
+TEST(SceneParser, StageGravity) {
+  const Scene plain = parse_scene(kValid, "scene.toml");
+  EXPECT_FALSE(plain.stages[0].gravity.has_value());
+  const Scene heavy = parse_scene(replace(kValid, "duration = 0.1\n", "duration = 0.1\ngravity = [0.0, 0.0, -20.0]\n"), "scene.toml");
+  ASSERT_TRUE(heavy.stages[0].gravity.has_value());
+  EXPECT_EQ(*heavy.stages[0].gravity, Vec3(0, 0, -20));
+  expect_rejected({"stage gravity of two numbers", replace(kValid, "duration = 0.1\n", "duration = 0.1\ngravity = [0.0, -20.0]\n"),
+                   {"stage[0].gravity", "expected an array of 3 numbers"}});
+}
+
 using BadCase = BadScene;
 
 class SceneRejects : public ::testing::TestWithParam<BadCase> {};

@@ -178,6 +178,8 @@ void run_stage(const StageOptions& o) {
     meta.run = RunInfo{stage->name, sim.step, static_cast<std::int64_t>(std::ceil(stage->duration / sim.dt - 1e-9)), sim.time, {}, {},
                        o.in, seal_fingerprint(o.in), {}, {}};
   }
+  // A stage's own gravity (a resumed run's checkpoint holds it already; set again all the same).
+  if (stage->gravity) sim.params.gravity = *stage->gravity;
   const StartChecks checks(sim);
   checks.print("run-stage");
   meta.writer = "run-stage";

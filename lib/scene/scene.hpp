@@ -147,6 +147,7 @@ struct StageSpec {
   std::string name;
   double duration = 0;      // [s]
   double output_every = 0;  // VTK frame cadence [s]; 0 = first and last frame only
+  std::optional<Vec3> gravity;  // this stage's gravity [m/s^2]; none: [simulation] gravity
   std::vector<ActionSpec> actions;  // applied in order at the start of the stage
   std::vector<MotionSpec> motions;  // wall motions during the stage (others stay fixed)
   std::vector<ServoSpec> servos;    // servo-controlled wall groups
