@@ -32,7 +32,7 @@ int main(int argc, char** argv) {
       ->needs(track);
   app.add_option("--health-every", o.health_every,
                  "steps between rows of the health log OUT with .health.csv (default: the stage's health_every in seconds, else a "
-                 "hundredth of the stage, at least 100 steps)")
+                 "hundredth of the stage, at least 500 steps)")
       ->check(CLI::Validator(
           [](std::string& v) {
             return v.find_first_not_of("0123456789") == std::string::npos && v.find_first_not_of('0') != std::string::npos

@@ -1181,7 +1181,7 @@ void read_stages(TableReader& top, Scene& sc) {
     if (sc.stage(s.name)) r.fail("name", "duplicate stage name");
     s.duration = r.number("duration", 0, kInf, "s", true);
     s.output_every = r.number_or("output_every", 0.0, 0, kInf, "s (0 = first and last frame only)");
-    s.health_every = r.number_or("health_every", 0.0, 0, kInf, "s (0 or absent = a hundredth of the stage, at least 100 steps)");
+    s.health_every = r.number_or("health_every", 0.0, 0, kInf, "s (0 or absent = a hundredth of the stage, at least 500 steps)");
     const auto actions = r.tables("action");
     for (std::size_t a = 0; a < actions.size(); ++a) {
       TableReader ar(*actions[a], top.file(), r.name(indexed("action", a)));

@@ -20,7 +20,7 @@ std::string health_path(const std::string& out);
 // Steps between health rows: `cli_steps` if > 0 (run-stage --health-every), else the stage's
 // health_every [s] if > 0, else a hundredth of the stage but at least kMinDefaultEvery steps (a row
 // costs about one step: bench/results/health.md).
-constexpr std::int64_t kMinDefaultHealthEvery = 100;
+constexpr std::int64_t kMinDefaultHealthEvery = 500;
 std::int64_t health_interval(std::int64_t cli_steps, double scene_seconds, double stage_duration, double dt);
 
 class HealthLog {
