@@ -93,6 +93,10 @@ def main(path, expect_writer):
         assert ins.dtype.kind == "i" and ins.ndim == 1 and "units" not in ins.attrs, "run/insert_count"
         assert f["run/insert_deferred"].dtype.kind == "i" and f["run/insert_deferred"].shape == ins.shape, "run/insert_deferred"
         assert (ins[()] >= 0).all() and (f["run/insert_deferred"][()] >= 0).all()
+        # Intact bonds when the stage began (the health log's broken count), -1 outside run-stage.
+        sb = f["run/stage_start_bonds"]
+        assert sb.dtype.kind == "i" and sb.shape == (1,) and "units" not in sb.attrs, "run/stage_start_bonds"
+        assert sb[0] >= 0 if expect_writer == "run-stage" else sb[0] == -1, sb[0]
 
         # The input it started from: none for gen-primary, else the --in's seal.
         seal = f["run/input_seal"][0].decode()

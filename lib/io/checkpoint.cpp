@@ -459,6 +459,7 @@ void run_datasets(Io& io, Run& run) {
     io.text("/run/input_path", run.input_path);
     io.text("/run/input_seal", run.input_seal);
   }
+  if (io.has("/run/stage_start_bonds")) io.scalar("/run/stage_start_bonds", run.stage_start_bonds);  // added within schema 4
 }
 
 template <class Io, class P, class A>

@@ -28,6 +28,7 @@ struct RunInfo {
   std::string input_seal;  // its seal_fingerprint (io/file_seal.hpp), "" for gen-primary
   std::vector<std::int64_t> insert_count;     // per [[stage.insert]]: particles inserted so far
   std::vector<std::int64_t> insert_deferred;  // per [[stage.insert]]: particle-events that found no room
+  std::int64_t stage_start_bonds = -1;        // intact bonds when the stage began (health log); -1 = unknown
 };
 
 struct CheckpointMeta {

@@ -1185,6 +1185,7 @@ void read_stages(TableReader& top, Scene& sc) {
       s.gravity = r.vec3("gravity");
       check_gravity(r, *s.gravity);
     }
+    s.health_every = r.number_or("health_every", 0.0, 0, kInf, "s (0 or absent = a hundredth of the stage, at least 500 steps)");
     const auto actions = r.tables("action");
     for (std::size_t a = 0; a < actions.size(); ++a) {
       TableReader ar(*actions[a], top.file(), r.name(indexed("action", a)));

@@ -18,6 +18,7 @@
 #include "io/scene_parser.hpp"
 #include "io/vtk_output.hpp"
 #include "run/frames.hpp"
+#include "run/health_log.hpp"
 #include "run/interrupt.hpp"
 #include "run/particle_track.hpp"
 #include "run/progress.hpp"
@@ -158,6 +159,8 @@ void run_stage(const StageOptions& o) {
   check_output_dir(o.vtk_dir, "--vtk");
   check_output_file(o.wall_forces, "--wall-forces");
   check_output_file(o.track, "--track");
+  const std::string health_file = health_path(o.out);
+  check_output_file(health_file, "--out (its health log)");
   const std::string walls_fingerprint = scene.walls_fingerprint();
   Simulation sim;
   CheckpointMeta meta;
@@ -177,6 +180,7 @@ void run_stage(const StageOptions& o) {
     start_motions(sim, *stage);
     meta.run = RunInfo{stage->name, sim.step, static_cast<std::int64_t>(std::ceil(stage->duration / sim.dt - 1e-9)), sim.time, {}, {},
                        o.in, seal_fingerprint(o.in), {}, {}};
+    meta.run.stage_start_bonds = static_cast<std::int64_t>(intact_bonds(sim));
   }
   // A stage's own gravity (a resumed run's checkpoint holds it already; set again all the same).
   if (stage->gravity) sim.params.gravity = *stage->gravity;
@@ -217,6 +221,13 @@ void run_stage(const StageOptions& o) {
   // The track first: a missing id is an error before any file is opened.
   ParticleTrack track(o.track, o.track_ids, sim, o.track_every, resume_step);
   WallLog wall_log(o.wall_forces, sim.walls, o.wall_forces_every, resume_step);
+  const std::int64_t health_every = health_interval(o.health_every, stage->health_every, stage->duration, sim.dt);
+  HealthLog health(health_file, sim.walls, health_every, run.stage_steps, resume_step, run.stage_start_bonds, o.quiet);
+  if (!o.quiet)
+    std::cerr << "run-stage: stage " << stage->name << ": time step " << sim.dt << " s (" << sim.dt / sim.critical_time_step()
+              << " of the critical " << sim.critical_time_step() << " s of eq. 2.48), " << run.stage_steps << " steps to t = "
+              << run.stage_start_time + stage->duration << " s; health every " << health_every << " steps (" << health_every * sim.dt
+              << " s) in " << health_file << "\n";
   FrameWriter frames(o.vtk_dir, stage->name);
   if (resume_step < 0) frames.discard();  // a fresh start: staged frames of an earlier run are stale
   // Partial outputs (staged frames, .partial CSV files) are kept for a restart while a periodic
@@ -247,6 +258,10 @@ void run_stage(const StageOptions& o) {
     const bool periodic = o.checkpoint_every > 0 || o.checkpoint_minutes > 0;
     auto last_checkpoint = std::chrono::steady_clock::now();
     std::int64_t checkpoint_step = have_checkpoint ? sim.step : -1;
+    // For the summary: the particle-steps and wall time of this process's part of the stage.
+    const auto loop_start = std::chrono::steady_clock::now();
+    const std::int64_t loop_first_step = sim.step;
+    double particle_steps = 0;
     auto write_periodic = [&]() {
       keep_integrals();
       keep_insert_counts();
@@ -259,6 +274,7 @@ void run_stage(const StageOptions& o) {
       // Particles due by now, before the step (a periodic checkpoint is written after a step, so a
       // resumed run makes this event first, as the uninterrupted one does).
       if (!inserts.empty()) insert_due(sim, inserts, sim.step - run.stage_start_step, sim.time - run.stage_start_time);
+      particle_steps += static_cast<double>(sim.particles.size());
       checks.guard([&] { sim.advance(); });
       // Servo speeds for the next step from this step's forces: the periodic checkpoint holds them as
       // the walls' motion, so a resumed run continues exactly.
@@ -267,6 +283,7 @@ void run_stage(const StageOptions& o) {
       const std::int64_t done = sim.step - run.stage_start_step;
       wall_log.record(sim, done, sim.step == end);
       track.record(sim, done, sim.step == end);
+      health.record(sim, done, sim.step == end);
       progress.update(done, sim.time);
       if (sim.step == end) break;
       const bool by_steps = o.checkpoint_every > 0 && done % o.checkpoint_every == 0;
@@ -305,16 +322,29 @@ void run_stage(const StageOptions& o) {
     // Before the checkpoint: a finished checkpoint means finished outputs (make).
     wall_log.finish();
     track.finish();
+    health.finish();
     frames.commit(run.frame_times.size());
     if (!inserts.empty() && !o.quiet) std::cerr << "run-stage: " << insert_report(inserts, sim.time - run.stage_start_time) << "\n";
     keep_integrals();
     keep_insert_counts();
     write_checkpoint(o.out, sim, meta);
+    if (!o.quiet) {
+      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - loop_start).count();
+      std::ostringstream m;
+      m.precision(3);
+      m << "run-stage: stage " << stage->name << " done: " << sim.step - loop_first_step << " steps";
+      if (loop_first_step != run.stage_start_step) m << " (resumed at step " << loop_first_step - run.stage_start_step << ")";
+      m << " in " << wall << " s wall time, " << (wall > 0 ? particle_steps / wall : 0.0) << " particle-steps/s";
+      if (!health.last_line().empty()) m << "; at the end " << health.last_line();
+      m << "\n";
+      std::cerr << m.str();
+    }
   } catch (...) {
     if (!have_checkpoint) {
       frames.discard();
       wall_log.discard();
       track.discard();
+      health.discard();
     }
     throw;
   }

@@ -2,9 +2,9 @@
 
 namespace dem {
 
-WallLog::WallLog(const std::string& path, const std::vector<Wall>& walls, std::int64_t every, std::int64_t resume_step)
-    : csv_(path, "step,time_s,wall,fx_N,fy_N,fz_N,tx_Nm,ty_Nm,tz_Nm,contacts\n", "wall force log", resume_step),
-      every_(every > 0 ? every : 1) {
+WallGroups wall_groups(const std::vector<Wall>& walls) {
+  WallGroups out;
+  std::vector<std::string>& names = out.names;
   for (const Wall& w : walls) {
     // Mesh elements NAME.0, NAME.1, ... make one wall NAME; box faces (box.zmax) are walls of their own.
     const std::size_t dot = w.name.rfind('.');
@@ -12,26 +12,31 @@ WallLog::WallLog(const std::string& path, const std::vector<Wall>& walls, std::i
                          w.name.find_first_not_of("0123456789", dot + 1) == std::string::npos;
     const std::string name = element ? w.name.substr(0, dot) : w.name;
     std::size_t g = 0;
-    while (g < names_.size() && names_[g] != name) ++g;
-    if (g == names_.size()) names_.push_back(name);
-    group_of_.push_back(static_cast<int>(g));
+    while (g < names.size() && names[g] != name) ++g;
+    if (g == names.size()) names.push_back(name);
+    out.group_of.push_back(static_cast<int>(g));
   }
+  return out;
 }
+
+WallLog::WallLog(const std::string& path, const std::vector<Wall>& walls, std::int64_t every, std::int64_t resume_step)
+    : csv_(path, "step,time_s,wall,fx_N,fy_N,fz_N,tx_Nm,ty_Nm,tz_Nm,contacts\n", "wall force log", resume_step),
+      every_(every > 0 ? every : 1), groups_(wall_groups(walls)) {}
 
 void WallLog::record(const Simulation& sim, std::int64_t steps_done, bool last) {
   if (!csv_.active() || (steps_done % every_ != 0 && !last)) return;
   const std::vector<WallLoad> loads = sim.wall_loads(true);
-  std::vector<WallLoad> sum(names_.size());
+  std::vector<WallLoad> sum(groups_.names.size());
   for (std::size_t e = 0; e < loads.size(); ++e) {
-    WallLoad& s = sum[group_of_[e]];
+    WallLoad& s = sum[groups_.group_of[e]];
     s.force += loads[e].force;
     s.torque += loads[e].torque;
     s.contacts += loads[e].contacts;
   }
-  for (std::size_t g = 0; g < names_.size(); ++g) {
+  for (std::size_t g = 0; g < groups_.names.size(); ++g) {
     const WallLoad& s = sum[g];
     std::fprintf(csv_.file(), "%lld,%.12g,%s,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%d\n", static_cast<long long>(sim.step), sim.time,
-                 names_[g].c_str(), s.force.x(), s.force.y(), s.force.z(), s.torque.x(), s.torque.y(), s.torque.z(), s.contacts);
+                 groups_.names[g].c_str(), s.force.x(), s.force.y(), s.force.z(), s.torque.x(), s.torque.y(), s.torque.z(), s.contacts);
   }
   csv_.flush();
 }

@@ -11,6 +11,14 @@
 
 namespace dem {
 
+// The walls as the logs name them: mesh elements NAME.0, NAME.1, ... make one wall NAME; box faces
+// (box.zmax) and polygons are walls of their own. `group_of[e]` is element e's index into `names`.
+struct WallGroups {
+  std::vector<std::string> names;
+  std::vector<int> group_of;
+};
+WallGroups wall_groups(const std::vector<Wall>& walls);
+
 class WallLog {
  public:
   // `path` empty: no log. `resume_step` >= 0: continue the partial file of an interrupted run,
@@ -25,8 +33,7 @@ class WallLog {
  private:
   CsvSeries csv_;
   std::int64_t every_ = 1;
-  std::vector<std::string> names_;  // wall names (scene entries)
-  std::vector<int> group_of_;       // element -> index into names_
+  WallGroups groups_;
 };
 
 }  // namespace dem

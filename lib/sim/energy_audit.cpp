@@ -24,11 +24,12 @@ MechanicalEnergy mechanical_energy(const Particles& p, const Vec3& gravity, cons
       const std::size_t k = order ? (*order)[q] : static_cast<std::size_t>(q);
       double rotational;
       e.kinetic += kinetic_energy_of(p, k, rotational);
+      e.rotational += rotational;
       e.potential -= p.mass[k] * gravity.dot(box.unwrapped(p.x[k], p.image[k]));
     }
   }
   MechanicalEnergy e;
-  for (const MechanicalEnergy& s : part) e.kinetic += s.kinetic, e.potential += s.potential;
+  for (const MechanicalEnergy& s : part) e.kinetic += s.kinetic, e.rotational += s.rotational, e.potential += s.potential;
   return e;
 }
 

@@ -27,7 +27,8 @@ namespace dem {
 // without it, the storage slots: the energy check, which only decides whether a run stops as
 // unstable, takes that cheaper sum every few steps.
 struct MechanicalEnergy {
-  double kinetic = 0;
+  double kinetic = 0;     // translational + rotational
+  double rotational = 0;  // the rotational part of `kinetic`
   double potential = 0;
   double total() const { return kinetic + potential; }
 };

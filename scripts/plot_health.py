@@ -1,0 +1,88 @@
+#!/usr/bin/env python3
+"""Plot run-stage's health log (OUT.health.csv) to PNG: energies, contacts and coordination, the
+largest overlap and broken bonds, and the force on each wall, against simulated time."""
+import csv
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+from post_table import save_atomically  # noqa: E402
+
+
+def read_health(csv_path: str):
+    """The columns of a health log by name, as float arrays."""
+    with open(csv_path) as f:
+        rows = list(csv.reader(f))
+    header, body = rows[0], rows[1:]
+    if not body:
+        sys.exit(f"{csv_path}: no rows yet")
+    cols = {}
+    for k, name in enumerate(header):
+        cols[name] = np.array([float(r[k]) if r[k] != "" else np.nan for r in body])
+    return cols
+
+
+def main(csv_path: str, png_path: str) -> None:
+    c = read_health(csv_path)
+    t = c["time_s"]
+    fig, axes = plt.subplots(2, 2, figsize=(10, 7), dpi=110, sharex=True)
+
+    ax = axes[0, 0]
+    ax.plot(t, c["kinetic_translation_J"], label="kinetic, translation")
+    ax.plot(t, c["kinetic_rotation_J"], label="kinetic, rotation")
+    ax.plot(t, c["elastic_bound_J"], label="elastic in contacts (upper bound)")
+    ax.set_ylabel("energy [J]")
+    if (np.concatenate([c["kinetic_translation_J"], c["elastic_bound_J"]]) > 0).any():
+        ax.set_yscale("symlog", linthresh=max(1e-12, 1e-6 * np.nanmax(c["kinetic_translation_J"] + c["elastic_bound_J"])))
+    ax.set_title("Energies")
+    ax.legend(fontsize=8)
+
+    ax = axes[0, 1]
+    ax.plot(t, c["coordination"], color="C0", label="coordination number (pairs only)")
+    ax.set_ylabel("coordination number [contacts per particle]")
+    ax.set_title("Contacts")
+    twin = ax.twinx()
+    twin.plot(t, c["pair_contacts"], color="C1", ls="--", label="particle-particle contacts")
+    twin.plot(t, c["wall_contacts"], color="C2", ls=":", label="particle-wall contacts")
+    twin.set_ylabel("contacts [count]")
+    lines = ax.get_lines() + twin.get_lines()
+    ax.legend(lines, [line.get_label() for line in lines], fontsize=8)
+
+    ax = axes[1, 0]
+    ax.plot(t, 100 * c["max_overlap_per_radius"], color="C3", label="largest overlap")
+    ax.set_ylabel("largest overlap [% of the radius]")
+    ax.set_xlabel("simulated time [s]")
+    ax.set_title("Overlap and bonds")
+    if np.nanmax(c["bonds"]) > 0 or np.nanmax(np.nan_to_num(c["bonds_broken"])) > 0:
+        twin = ax.twinx()
+        twin.plot(t, c["bonds"], color="C4", ls="--", label="intact bonds")
+        twin.plot(t, c["bonds_broken"], color="C5", ls=":", label="bonds broken in the stage")
+        twin.set_ylabel("bonds [count]")
+        lines = ax.get_lines() + twin.get_lines()
+        ax.legend(lines, [line.get_label() for line in lines], fontsize=8)
+    else:
+        ax.legend(fontsize=8)
+
+    ax = axes[1, 1]
+    walls = [name for name in c if name.startswith("force_") and name.endswith("_N")]
+    for name in walls:
+        ax.plot(t, c[name], label=name[len("force_"):-len("_N")])
+    ax.set_ylabel("force on the wall, magnitude [N]")
+    ax.set_xlabel("simulated time [s]")
+    ax.set_title("Walls")
+    if walls:
+        ax.legend(fontsize=8, ncol=2)
+
+    steps = c["step"]
+    fig.suptitle(f"{csv_path}: steps {int(steps[0])} to {int(steps[-1])}, time step {c['dt_s'][-1]:.3g} s", fontsize=9)
+    save_atomically(fig, png_path)
+    plt.close(fig)
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 3:
+        sys.exit("usage: plot_health.py RUN.health.csv OUT.png")
+    main(sys.argv[1], sys.argv[2])
