@@ -12,6 +12,7 @@
 
 #include <omp.h>
 
+#include "contact/model_table.hpp"
 #include "forces/force_loop.hpp"
 #include "integrate/motion.hpp"
 #include "simd/simd.hpp"
@@ -417,7 +418,21 @@ double Simulation::critical_time_step() const {
   for (double m : particles.mass) mmin = std::min(mmin, m);
   const double kmax = materials.max_stiffness(contact_scale());
   if (!(kmax > 0) || !std::isfinite(mmin)) return std::numeric_limits<double>::infinity();
-  return 2 * std::sqrt(mmin / (2 * kmax));  // eq. 2.48 (Hart et al.), without FRAC
+  return std::min(2 * std::sqrt(mmin / (2 * kmax)), dashpot_time_step());  // eq. 2.48 (Hart et al.), without FRAC
+}
+
+double Simulation::dashpot_time_step() const {
+  double mmin = std::numeric_limits<double>::infinity();
+  for (double m : particles.mass) mmin = std::min(mmin, m);
+  const double kmax = materials.max_stiffness(contact_scale());
+  if (!(kmax > 0) || !std::isfinite(mmin)) return std::numeric_limits<double>::infinity();
+  double c_max = 0;  // wall: m* = m_i, the largest m* of a contact of the lightest particle
+  for (std::size_t a = 0; a < materials.size(); ++a)
+    for (std::size_t b = 0; b < materials.size(); ++b) {
+      const PairParams& p = materials.pair(a, b);
+      c_max = std::max(c_max, with_damping(p, [&](auto d) { return d.largest_normal(p, mmin, kmax); }));
+    }
+  return c_max > 0 ? 2 * mmin / c_max : std::numeric_limits<double>::infinity();
 }
 
 ContactScale Simulation::contact_scale() const {
