@@ -28,7 +28,7 @@ struct Result {
   double restitution = 0, duration = 0, peak_overlap = 0;
 };
 
-struct Setup {
+struct Shot {
   NormalLaw law = NormalLaw::Cundall;
   bool wall = false;          // a sphere on a plane wall, else two spheres (radii a, b)
   double eta = 0.5;           // restitution asked
@@ -48,7 +48,7 @@ inline double effective_mass(bool wall) {
   return wall ? ma : ma * mb / (ma + mb);
 }
 
-inline Material material(const Setup& s, double density) {
+inline Material material(const Shot& s, double density) {
   Material m;
   m.name = density == kDensityA ? "a" : "b";
   m.law = s.law;
@@ -64,7 +64,7 @@ inline Material material(const Setup& s, double density) {
 }
 
 // One collision; restitution = separation speed after / approach speed before.
-inline Result collide(const Setup& s) {
+inline Result collide(const Shot& s) {
   Simulation sim;
   sim.materials = MaterialTable({material(s, kDensityA), material(s, kDensityB)}, {});
   sim.params.gravity = Vec3::Zero();

@@ -31,7 +31,7 @@ int main(int argc, char** argv) {
     for (const double n : steps) {
       double worst_e = 0, e_at = eta, worst_t = 0, worst_p = 0;
       for (const bool wall : {false, true}) {
-        Setup s;
+        Shot s;
         s.law = hertz ? NormalLaw::Hertz : NormalLaw::Cundall;
         s.wall = wall;
         s.eta = eta;
@@ -45,7 +45,7 @@ int main(int argc, char** argv) {
           const double e_wall = wall ? 1 / ((1 - s.poisson * s.poisson) / s.young * 2) : e_star;
           const double delta = std::pow(15 * m * s.v * s.v / (16 * e_wall * std::sqrt(r_eff)), 0.4);
           s.t_ref = 2.9432751843247047 * delta / s.v;
-          Setup f = s;
+          Shot f = s;
           f.steps = 2000;
           const Result fine = collide(f);
           ref = {fine.duration, fine.peak_overlap, eta};

@@ -110,9 +110,12 @@ template <class D, class P, class L, class M>
   const L& u = k.overlap;
   const L inv_m = one / k.m_eff;
   // No mark (a new contact, or one read without history): the overlap at the last half step if the
-  // spheres touched at the last step (kinematics), else 0 (eq. D2).
+  // spheres touched at the last step by the kinematics, else 0 (eq. D2). "Touched" asks for an
+  // overlap u - |vn| dt > |vn| dt / 2 at the last step: a touch that fell on a step boundary
+  // leaves the last step's overlap at round-off, on either side of zero, and may or may not have
+  // been a contact there; taken as new, it gets the dashpot's whole impulse from zero.
   const M none = both(less_or_equal(mark, zero), less_or_equal(zero, mark));
-  const L before = select(none, only_where(either(bonded, less(zero, u + h * vn)), u + half_h * vn), mark);
+  const L before = select(none, only_where(either(bonded, less(L(-1.5) * h * vn, u)), u + half_h * vn), mark);
   const L free = vn + h * (f_el * inv_m);  // the relative normal velocity after the step without the dashpot
   // A parting contact's mark is kept as 1e-300, not 0: should the spheres still touch at the next
   // step (others pushed them), it says that this step took the dashpot's impulse up to here, so the

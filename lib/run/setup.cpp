@@ -151,19 +151,24 @@ double choose_time_step(const Simulation& sim, const SimulationSpec& spec) {
   if (spec.time_step > dashpot) {  // even when forced: the dashpot, not the spring, would set the motion
     std::ostringstream m;
     m << "simulation.time_step = " << spec.time_step << " s exceeds the dashpot's limit " << dashpot
-      << " s (2 m*/c_n of the lightest particle: c_n dt / (2 m*) = " << spec.time_step / dashpot
+      << " s (2 m*/c_n of the lightest pair: c_n dt / (2 m*) = " << spec.time_step / dashpot
       << " > 1, so a damped contact's relative velocity would flip sign every step instead of dying away; docs/contact-laws.md, "
          "\"The dashpot in time\"); lower it, or omit it for the automatic step (which respects it)";
     throw InputError(m.str());
   }
   if (spec.time_step == 0) {
     if (!std::isfinite(critical)) throw InputError("cannot compute the time step of eq. 2.48: no particles or no stiffness");
+    if (spec.frac * critical > dashpot) {  // only a forced FRAC above 0.5 with near-critical damping
+      std::cerr << "warning: simulation.frac = " << spec.frac << " gives " << spec.frac * critical << " s, above the dashpot's limit "
+                << dashpot << " s (2 m*/c_n of the lightest pair): using that\n";
+      return dashpot;
+    }
     return spec.frac * critical;
   }
   if (spec.time_step > critical && !spec.force_time_step) {
     std::ostringstream m;
     m << "simulation.time_step = " << spec.time_step << " s exceeds the critical time step " << critical
-      << " s (eq. 2.48, 2 sqrt(M_min / (2 K_max)), or the dashpot's limit 2 M_min / c_n if smaller); lower it, omit it for the automatic step, or set "
+      << " s of eq. 2.48 (2 sqrt(M_min / (2 K_max))); lower it, omit it for the automatic step, or set "
          "simulation.force_time_step = true";
     throw InputError(m.str());
   }
