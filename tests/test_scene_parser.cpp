@@ -56,6 +56,15 @@ std::string replace(std::string s, const std::string& from, const std::string& t
   return s.replace(pos, from.size(), to);
 }
 
+// Restitution 0 (perfectly plastic) is accepted: critical damping, gamma = 1 (docs/contact-laws.md,
+// "The dashpot in time"); its tangential restitution follows it unless given.
+TEST(SceneParser, RestitutionZeroIsCriticalDamping) {
+  const Scene s = parse_scene(replace(kValid, "restitution = 0.3", "restitution = 0.0"), "scene.toml");
+  EXPECT_EQ(s.materials[0].restitution, 0.0);
+  const MaterialTable t(s.materials, s.mixing, s.pairs);
+  EXPECT_EQ(t.pair(0, 0).gamma_n, 1.0);
+}
+
 // A hertz material reads its own keys (young_modulus, poisson_ratio), kt without a default (there
 // is no kn to take it from), and its pair constants follow eq. H2 (by hand).
 TEST(SceneParser, HertzMaterialParses) {
@@ -139,7 +148,7 @@ std::vector<BadCase> bad_cases() {
        {"material[0].density = \"heavy\"", "expected a number", "got a string"}},
       {"zero stiffness", replace(kValid, "kn = 5.0e4", "kn = 0.0"), {"material[0].kn = 0", "(0, inf) N/m"}},
       {"restitution above one", replace(kValid, "restitution = 0.3", "restitution = 1.5"),
-       {"material[0].restitution = 1.5", "(0, 1]"}},
+       {"material[0].restitution = 1.5", "[0, 1]"}},
       {"friction angle 90", replace(kValid, "friction_angle = 25.0", "friction_angle = 90.0"),
        {"material[0].friction_angle = 90", "[0, 90) degrees"}},
       {"unknown contact law", replace(kValid, "density = 2500.0", "density = 2500.0\nlaw = \"hooke\""),

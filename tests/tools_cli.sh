@@ -75,7 +75,11 @@ sed -e 's/^gravity = .*/gravity = [0.0, 0.0, -1.0e308]/' "$data/energy_drop.toml
 check "non-finite state diagnosed" 5 "unstable simulation: non-finite state at step [0-9]* .* for particle id 0, with dt = .*: check the time step" -- \
   "$bin/run-stage" --scene "$tmp/overflow.toml" --stage drop --in "$tmp/drop0.h5" --out "$tmp/drop3.h5" --quiet
 [ -e "$tmp/drop3.h5" ] && { echo "FAIL output written after a non-finite state"; fail=1; }
-sed 's/^force_time_step = true/force_time_step = true\nmax_energy_gain = 0/' "$data/energy_drop.toml" > "$tmp/drop_nocheck.toml"
+# The bounce at twice the critical step stays bounded since the dashpot integrates the overlap
+# (docs/contact-laws.md, "The dashpot in time"; the thesis's half-step dashpot fed it energy): a
+# gravity of 1e4 m/s^2 drives the sphere into the floor instead, which the overlap check stops.
+sed -e 's/^force_time_step = true/force_time_step = true\nmax_energy_gain = 0/' -e 's/^gravity = .*/gravity = [0.0, 0.0, -1.0e4]/' \
+  "$data/energy_drop.toml" > "$tmp/drop_nocheck.toml"
 check "energy check off: overlap stops it later" 5 "overlap of .* between particle 0 and wall floor.zmin" -- \
   "$bin/run-stage" --scene "$tmp/drop_nocheck.toml" --stage drop --in "$tmp/drop0.h5" --out "$tmp/drop2.h5" --quiet
 

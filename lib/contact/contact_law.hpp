@@ -34,17 +34,22 @@ struct ContactModel {
   // cleared where the bond breaks.
   template <class L, class P, class M>
   [[gnu::always_inline]] static LaneForce<L> evaluate_in_plane(const P& p, const LaneKinematics<L>& c, double dt,
-                                                                lanes::Triple<L>& spring, M& bonded, lanes::Triple<L>& rolling) {
+                                                                lanes::Triple<L>& spring, M& bonded, L& mark, lanes::Triple<L>& rolling) {
     using namespace lanes;
     const L zero(0.0);
     const Triple<L>& n = c.n;
     const L vn = dot(c.v_rel, n);  // > 0 when separating
     const L f_el = Normal::elastic(p, c.overlap, c.r_eff, bonded);  // clears bonded where the bond breaks
-    // f_n = f_el + c_n du_n/dt with du_n/dt = -vn, eq. 2.27-2.28; not clipped (SPEC §6 Decision)
+    // f_n = f_el + c_n du_n/dt, eq. 2.27-2.28, du_n/dt taken over the step (dashpot_force,
+    // damping.hpp: second order, whatever the phase of the touch); not clipped (SPEC §6 Decision)
     // unless the pair asks for no_viscous_attraction (unbonded contacts only).
     const L c_t = Tangential::dashpot(p, c);  // beside the normal one: both read m*
-    L fn = f_el - Damping::coefficient(p, c) * vn;
-    fn = zero_where(but_not(less_or_equal(c.overlap, zero), bonded), fn);  // a pair apart whose bond just broke: no force
+    L fn = f_el;
+    if constexpr (requires { Damping::force(p, c, vn, f_el, dt, bonded, mark); }) fn = fn + Damping::force(p, c, vn, f_el, dt, bonded, mark);  // mixed
+    else fn = fn + dashpot_force<Damping>(p, c, vn, f_el, dt, bonded, mark);
+    const auto apart = but_not(less_or_equal(c.overlap, zero), bonded);
+    fn = zero_where(apart, fn);  // a pair apart whose bond just broke: no force
+    mark = zero_where(apart, mark);
     fn = zero_where(both(but_not(p.no_viscous_attraction, bonded), less(fn, zero)), fn);
     // Tangential relative velocity at the contact point, eq. 2.12.
     const Triple<L> vt = (c.v_rel - vn * n) - cross(c.w_arm, n);
@@ -57,36 +62,42 @@ struct ContactModel {
   }
   template <class L, class P, class M>
   [[gnu::always_inline]] static LaneForce<L> evaluate_in_plane(const P& p, const LaneKinematics<L>& c, double dt,
-                                                                lanes::Triple<L>& spring, M& bonded) {
+                                                                lanes::Triple<L>& spring, M& bonded, L& mark) {
     static_assert(!Rolling::has_history, "a rolling law with history needs its history passed");
     lanes::Triple<L> none{};
-    return evaluate_in_plane(p, c, dt, spring, bonded, none);
+    return evaluate_in_plane(p, c, dt, spring, bonded, mark, none);
   }
 
   // One contact with Eigen's vectors, for the plain loops, the wall contacts and the tests.
   // `spring` and `rolling` are turned into the current tangent plane and updated in place;
-  // `bonded` is Phi, cleared when the bond breaks.
+  // `bonded` is Phi, cleared when the bond breaks; `mark` the dashpot's (dashpot_force).
   [[gnu::always_inline]] static ContactForce evaluate(const PairParams& p, const ContactKinematics& c, double dt, Vec3& spring,
-                                                      std::uint8_t& bonded, Vec3& rolling) {
+                                                      std::uint8_t& bonded, double& mark, Vec3& rolling) {
     spring = in_tangent_plane(spring, c.n);
     if constexpr (Rolling::has_history) rolling = in_tangent_plane(rolling, c.n);
-    return evaluate_in_plane(p, c, dt, spring, bonded, rolling);
+    return evaluate_in_plane(p, c, dt, spring, bonded, mark, rolling);
   }
   [[gnu::always_inline]] static ContactForce evaluate(const PairParams& p, const ContactKinematics& c, double dt, Vec3& spring,
-                                                      std::uint8_t& bonded) {
+                                                      std::uint8_t& bonded, double& mark) {
     Vec3 none = Vec3::Zero();
-    return evaluate(p, c, dt, spring, bonded, none);
+    return evaluate(p, c, dt, spring, bonded, mark, none);
+  }
+  // A contact without dashpot history (the tests of a law's force at one instant).
+  [[gnu::always_inline]] static ContactForce evaluate(const PairParams& p, const ContactKinematics& c, double dt, Vec3& spring,
+                                                      std::uint8_t& bonded) {
+    double mark = 0;
+    return evaluate(p, c, dt, spring, bonded, mark);
   }
   [[gnu::always_inline]] static Vec3 in_tangent_plane(const Vec3& spring, const Vec3& n) {
     return lanes::vec3(Tangential::in_tangent_plane(lanes::triple(spring), lanes::triple(n)));
   }
   [[gnu::always_inline]] static ContactForce evaluate_in_plane(const PairParams& p, const ContactKinematics& c, double dt, Vec3& spring,
-                                                               std::uint8_t& bonded, Vec3& rolling) {
+                                                               std::uint8_t& bonded, double& mark, Vec3& rolling) {
     const LaneKinematics<double> k{lanes::triple(c.n),  c.overlap, lanes::triple(c.v_rel), lanes::triple(c.w_arm),
                                    c.m_eff, c.r_eff, lanes::triple(c.w_rel)};
     lanes::Triple<double> s = lanes::triple(spring), r = lanes::triple(rolling);
     bool b = bonded != 0;
-    const LaneForce<double> f = evaluate_in_plane(p, k, dt, s, b, r);
+    const LaneForce<double> f = evaluate_in_plane(p, k, dt, s, b, mark, r);
     spring = lanes::vec3(s);
     if constexpr (Rolling::has_history) rolling = lanes::vec3(r);
     bonded = b;

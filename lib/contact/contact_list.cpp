@@ -27,6 +27,7 @@ void ContactList::resize(std::size_t n) {
   resize_with_headroom(spring, n, Vec3(Vec3::Zero()));
   resize_with_headroom(rolling, n, Vec3(Vec3::Zero()));
   resize_with_headroom(bonded, n, std::uint8_t{0});
+  resize_with_headroom(dashpot, n, 0.0);
   resize_with_headroom(active, n, std::uint8_t{0});
   resize_with_headroom(normal, n, Vec3(Vec3::Zero()));
   resize_with_headroom(sum, n, ContactSum());
@@ -40,6 +41,7 @@ void ContactList::reserve(std::size_t n) {
   spring.reserve(n);
   rolling.reserve(n);
   bonded.reserve(n);
+  dashpot.reserve(n);
   active.reserve(n);
   normal.reserve(n);
   sum.reserve(n);
@@ -53,6 +55,7 @@ void ContactList::push_back_from(const ContactList& from, std::size_t k) {
   spring.push_back(from.spring[k]);
   rolling.push_back(from.rolling[k]);
   bonded.push_back(from.bonded[k]);
+  dashpot.push_back(from.dashpot[k]);
   active.push_back(from.active[k]);
   normal.push_back(from.normal[k]);
   sum.push_back(from.sum[k]);
@@ -89,6 +92,7 @@ void take_found(ContactList& list, const std::vector<FoundContact>& found, const
   carry_field(list.spring, from, place, Vec3(Vec3::Zero()));
   carry_field(list.rolling, from, place, Vec3(Vec3::Zero()));
   carry_field(list.bonded, from, place, std::uint8_t{0});
+  carry_field(list.dashpot, from, place, 0.0);
   // Whether it was a contact at the last step: the wall loop hands a lost contact's spring to a
   // new one of the same particle (a sphere rolling from one mesh element onto the next).
   carry_field(list.active, from, place, std::uint8_t{0});

@@ -1,5 +1,6 @@
 #pragma once
-// Contacts as structure-of-arrays, with their history (the tangential spring and the bond) keyed by
+// Contacts as structure-of-arrays, with their history (the tangential spring, the bond and the
+// dashpot's mark) keyed by
 // stable ids so that it survives neighbour rebuilds, re-sorting and restarts (DESIGN.md).
 //
 // During a run the list holds every candidate pair of the neighbour list; `active` marks those
@@ -29,6 +30,8 @@ struct ContactList {
   std::vector<Vec3> spring;         // tangential spring force on i [N] (history)
   std::vector<Vec3> rolling;        // rolling spring couple on i [N m] (history of epsd2; zero for other laws)
   std::vector<std::uint8_t> bonded; // bond flag Φ (history), SPEC §6
+  std::vector<double> dashpot;      // the normal dashpot's overlap mark [m] (history; 0: none),
+                                    // docs/contact-laws.md "The dashpot in time"
   std::vector<std::uint8_t> active; // touching or bonded this step: a contact, not just a candidate
   std::vector<Vec3> normal;         // unit normal from i to j (or to the wall) this step
   std::vector<ContactSum> sum;      // force on i and n x f_t this step; zero for a mere candidate

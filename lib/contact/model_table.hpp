@@ -121,6 +121,13 @@ struct MixedDamping {
   static double coefficient(const PairParams& p, const LaneKinematics<double>& c) {
     return with_normal_law(p.law, [&](auto law) { return decltype(law)::Damping::coefficient(p, c); });
   }
+  // The pair's dashpot over the step (damping.hpp's dashpot_force with its damping).
+  static double force(const PairParams& p, const LaneKinematics<double>& c, double vn, double f_el, double dt, bool bonded,
+                      double& mark) {
+    return with_normal_law(p.law, [&](auto law) {
+      return dashpot_force<typename decltype(law)::Damping>(p, c, vn, f_el, dt, bonded, mark);
+    });
+  }
 };
 
 // A scene whose material pairs use different laws: the law of each contact's pair, per contact.

@@ -76,7 +76,7 @@ struct TangentialSpring {
                                                .hi = std::numeric_limits<double>::infinity(), .unit = "N (C, bonded contacts)",
                                                .si_unit = "N", .mixing = &MixingRules::strength};
   static constexpr PropertyKey kRestitutionKey = {.keyword = "tangential_restitution", .number = &ContactProperties::restitution_t,
-                                                  .lo = 0, .hi = 1, .lo_open = true, .unit = "(eta_t, docs/physics.md eq. P14)", .si_unit = "1",
+                                                  .lo = 0, .hi = 1, .unit = "(eta_t, docs/physics.md eq. P14; 0: critical damping)", .si_unit = "1",
                                                   .mixing = &MixingRules::restitution, .default_key = "restitution"};
   // The friction and cohesion of the failure surface.
   static void derive_surface(PairParams& p, const ContactProperties& q) {

@@ -30,6 +30,7 @@ struct PairLawArrays {
   std::uint8_t* bonded;
   Vec3* spring;
   Vec3* rolling;
+  double* dashpot;
   Vec3* normal;
   ContactSum* sum;
   bool keep_normals;  // the normal of every contact (SimParams::keep_pair_results)
@@ -37,7 +38,7 @@ struct PairLawArrays {
   PairLawArrays(const Particles& p, ContactList& pc, bool keep)
       : v(p.v.data()), w(p.w.data()), radius(p.radius.data()), mass(p.mass.data()), material(p.material.data()),
         fixed(p.fixed.data()), slot_i(pc.slot_i.data()), slot_j(pc.slot_j.data()), bonded(pc.bonded.data()),
-        spring(pc.spring.data()), rolling(pc.rolling.data()), normal(pc.normal.data()), sum(pc.sum.data()), keep_normals(keep) {}
+        spring(pc.spring.data()), rolling(pc.rolling.data()), dashpot(pc.dashpot.data()), normal(pc.normal.data()), sum(pc.sum.data()), keep_normals(keep) {}
 };
 
 // What the law of contact k leaves: its sum (the force on i and n x f_t), and its normal where

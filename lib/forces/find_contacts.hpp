@@ -30,12 +30,13 @@ struct CandidateArrays {
   std::uint8_t* bonded;
   Vec3* spring;
   Vec3* rolling;
+  double* dashpot;
   ContactSum* sum;
 
   CandidateArrays(const Particles& p, ContactList& pc)
       : count(static_cast<long>(pc.size())), x(p.x.data()), radius(p.radius.data()), slot_i(pc.slot_i.data()),
         slot_j(pc.slot_j.data()), active(pc.active.data()), bonded(pc.bonded.data()), spring(pc.spring.data()),
-        rolling(pc.rolling.data()), sum(pc.sum.data()) {}
+        rolling(pc.rolling.data()), dashpot(pc.dashpot.data()), sum(pc.sum.data()) {}
 };
 
 // The contacts found in a chunk: candidate positions and separations x_j - x_i (nearest image),
@@ -76,7 +77,7 @@ inline int find_contacts_plain(const CandidateArrays& a, const PeriodicBox& box,
     m += now;
     // A candidate that was no contact already holds zeros (ContactList): in a dense bed most
     // candidates are such, and rewriting their 72 bytes every step cost memory bandwidth.
-    if (!now && was) a.spring[k] = Vec3::Zero(), a.rolling[k] = Vec3::Zero(), a.sum[k] = ContactSum();
+    if (!now && was) a.spring[k] = Vec3::Zero(), a.rolling[k] = Vec3::Zero(), a.dashpot[k] = 0, a.sum[k] = ContactSum();
   }
   return m;
 }

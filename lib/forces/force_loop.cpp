@@ -89,7 +89,7 @@ double pair_chunk(const ChunkInput& chunk, long first, long last) {
     const int i = a.slot_i[k], j = a.slot_j[k];
     const ContactKinematics& c = kin[e];
     const PairParams& params = materials.pair(a.material[i], a.material[j]);
-    const ContactForce f = Model::evaluate_in_plane(params, c, dt, a.spring[k], a.bonded[k], a.rolling[k]);
+    const ContactForce f = Model::evaluate_in_plane(params, c, dt, a.spring[k], a.bonded[k], a.dashpot[k], a.rolling[k]);
     keep_pair_result(a, k, c.n, f.on_i, c.n.cross(f.tangential));
     if constexpr (Model::has_rolling) a.rolling[k] = f.couple;  // summed with the loads (finish_block)
     worst = std::max(worst, relative_overlap_if_larger(c.overlap, std::min(a.radius[i], a.radius[j]), worst));
@@ -151,6 +151,7 @@ double wall_run(const ForceLoopInput& in, ContactList& wc, ForceBlocks& out, lon
     if (from >= 0) {
       wc.spring[k] = wc.spring[first + from], wc.spring[first + from] = Vec3::Zero();
       wc.rolling[k] = wc.rolling[first + from], wc.rolling[first + from] = Vec3::Zero();
+      wc.dashpot[k] = wc.dashpot[first + from], wc.dashpot[first + from] = 0;  // and the dashpot's mark
     }
   }
   double worst = 0;
@@ -160,6 +161,7 @@ double wall_run(const ForceLoopInput& in, ContactList& wc, ForceBlocks& out, lon
       wc.active[k] = 0;
       wc.spring[k] = Vec3::Zero();
       wc.rolling[k] = Vec3::Zero();
+      wc.dashpot[k] = 0;
       wc.sum[k] = ContactSum();
       continue;
     }
@@ -176,7 +178,7 @@ double wall_run(const ForceLoopInput& in, ContactList& wc, ForceBlocks& out, lon
     c.r_eff = p.radius[i];  // a wall: infinite radius, eq. H3
     if constexpr (Model::has_rolling) c.w_rel = p.w[i] - g.spin;
     const ContactForce f = Model::evaluate(in.materials.pair(p.material[i], in.walls[wc.slot_j[k]].material), c, in.dt,
-                                           wc.spring[k], wc.bonded[k], wc.rolling[k]);
+                                           wc.spring[k], wc.bonded[k], wc.dashpot[k], wc.rolling[k]);
     if constexpr (Model::has_rolling) wc.rolling[k] = f.couple;
     const Vec3 torque_per_radius = c.n.cross(f.tangential);
     wc.active[k] = 1;

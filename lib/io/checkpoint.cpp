@@ -408,6 +408,7 @@ struct ContactArrays {
   std::vector<std::int64_t> ids;  // (C, 2)
   std::vector<Vec3> spring, rolling;
   std::vector<std::uint8_t> bonded;
+  std::vector<double> dashpot;  // the normal dashpot's marks (empty: a file from before them)
 };
 struct WallArrays {
   std::vector<std::string> name;
@@ -522,6 +523,10 @@ void contact_datasets(Io& io, const std::string& kind, A& a) {
   const std::string rolling = "/contacts/" + kind + "_rolling";
   if (io.has(rolling.c_str())) io.vec3s(rolling.c_str(), a.rolling, "N m", rows);  // schema 4 on
   io.uint8s(("/contacts/" + kind + "_bonded").c_str(), a.bonded, rows);
+  // Added within schema 4: a file without it resumes each contact without its dashpot's mark
+  // (taken from the kinematics at the first step, damping.hpp), not bit for bit.
+  const std::string dashpot = "/contacts/" + kind + "_dashpot";
+  if (io.has(dashpot.c_str())) io.doubles(dashpot.c_str(), a.dashpot, "m", rows);
 }
 
 template <class Io, class A>
@@ -588,6 +593,7 @@ ContactArrays contact_arrays(const ContactList& c) {
   a.spring = c.spring;
   a.rolling = c.rolling;
   a.bonded = c.bonded;
+  a.dashpot = c.dashpot;
   return a;
 }
 
@@ -810,6 +816,7 @@ void read_checkpoint(const std::string& path, Simulation& sim, CheckpointMeta& m
       c.spring[i] = a.spring[i];
       if (!a.rolling.empty()) c.rolling[i] = a.rolling[i];
       c.bonded[i] = a.bonded[i];
+      if (static_cast<long>(a.dashpot.size()) == nc) c.dashpot[i] = a.dashpot[i];
       // History is carried over by a merge of key-sorted lists, as the writer stores them.
       if (i > 0 && !(c.key_i[i - 1] < c.key_i[i] || (c.key_i[i - 1] == c.key_i[i] && c.key_j[i - 1] < c.key_j[i])))
         throw IoError(path + ": /contacts/" + kind + "_ids is not sorted by id (damaged or foreign file)");

@@ -286,7 +286,7 @@ void check_frac(TableReader& r, const SimulationSpec& s) {
                           " a contact lasts fewer than 8 steps and the results are wrong (restitution 10 to 100 % off, contact time up "
                           "to 2x; README \"Which FRAC buys which accuracy\", bench/results/contact.md)";
   if (!s.force_time_step)
-    r.fail("frac", why + "; take frac <= " + num(kFracHi) + " (default 0.1; 0.01 for 1 % on the restitution), or set "
+    r.fail("frac", why + "; take frac <= " + num(kFracHi) + " (default 0.1; 0.07 for 1 % on the restitution), or set "
                          "simulation.force_time_step = true to run with it anyway");
   r.warn("frac", "forced (simulation.force_time_step = true): " + why);
 }

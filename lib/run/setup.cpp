@@ -147,8 +147,14 @@ void check_inside_walls(const Simulation& sim, const Scene& scene, const std::st
 
 double choose_time_step(const Simulation& sim, const SimulationSpec& spec) {
   const double critical = sim.critical_time_step();
+  const double dashpot = sim.dashpot_time_step();
   if (spec.time_step == 0) {
     if (!std::isfinite(critical)) throw InputError("cannot compute the time step of docs/physics.md eq. P5: no particles or no stiffness");
+    if (spec.frac * critical > dashpot) {  // only a forced FRAC above 0.5 with near-critical damping
+      std::cerr << "warning: simulation.frac = " << spec.frac << " gives " << spec.frac * critical << " s, above the dashpot's limit "
+                << dashpot << " s (2 m*/c_n of the lightest pair): using that\n";
+      return dashpot;
+    }
     return spec.frac * critical;
   }
   if (spec.time_step > critical && !spec.force_time_step) {
@@ -158,6 +164,19 @@ double choose_time_step(const Simulation& sim, const SimulationSpec& spec) {
          "simulation.force_time_step = true";
     throw InputError(m.str());
   }
+  if (spec.time_step > dashpot && !spec.force_time_step) {  // possible below eq. 2.48's step where gamma > 1/2
+    std::ostringstream m;
+    m << "simulation.time_step = " << spec.time_step << " s exceeds the dashpot's limit " << dashpot
+      << " s (2 m*/c_n of the lightest pair: c_n dt / (2 m*) = " << spec.time_step / dashpot
+      << " > 1, so a damped contact's relative velocity would flip sign every step instead of dying away; docs/contact-laws.md, "
+         "\"The dashpot in time\"); lower it, omit it for the automatic step, or set simulation.force_time_step = true";
+    throw InputError(m.str());
+  }
+  if (spec.time_step > dashpot)  // forced
+    std::cerr << "warning: forced time step " << spec.time_step << " s exceeds the dashpot's limit " << dashpot
+              << " s (2 m*/c_n of the lightest pair: c_n dt / (2 m*) = " << spec.time_step / dashpot
+              << " > 1): a damped contact's relative velocity flips sign every step instead of dying away (docs/contact-laws.md, "
+                 "\"The dashpot in time\")\n";
   if (spec.time_step > critical)
     std::cerr << "warning: forced time step " << spec.time_step << " s exceeds the critical step " << critical
               << " s of docs/physics.md eq. P5: expect an unstable run\n";

@@ -225,7 +225,7 @@ void run_stage(const StageOptions& o) {
   HealthLog health(health_file, sim.walls, health_every, run.stage_steps, resume_step, run.stage_start_bonds, o.quiet);
   if (!o.quiet)
     std::cerr << "run-stage: stage " << stage->name << ": time step " << sim.dt << " s (" << sim.dt / sim.critical_time_step()
-              << " of the critical " << sim.critical_time_step() << " s of eq. 2.48), " << run.stage_steps << " steps to t = "
+              << " of the critical " << sim.critical_time_step() << " s of docs/physics.md eq. P5), " << run.stage_steps << " steps to t = "
               << run.stage_start_time + stage->duration << " s; health every " << health_every << " steps (" << health_every * sim.dt
               << " s) in " << health_file << "\n";
   FrameWriter frames(o.vtk_dir, stage->name);

@@ -8,10 +8,12 @@
 #include <numeric>
 #include <sstream>
 #include <stdexcept>
+#include <type_traits>
 #include <utility>
 
 #include <omp.h>
 
+#include "contact/model_table.hpp"
 #include "forces/force_loop.hpp"
 #include "integrate/motion.hpp"
 #include "simd/simd.hpp"
@@ -418,6 +420,26 @@ double Simulation::critical_time_step() const {
   const double kmax = materials.max_stiffness(contact_scale());
   if (!(kmax > 0) || !std::isfinite(mmin)) return std::numeric_limits<double>::infinity();
   return 2 * std::sqrt(mmin / (2 * kmax));  // eq. 2.48 (Hart et al.), without FRAC
+}
+
+double Simulation::dashpot_time_step() const {
+  double mmin = std::numeric_limits<double>::infinity();
+  for (double m : particles.mass) mmin = std::min(mmin, m);
+  if (!std::isfinite(mmin)) return std::numeric_limits<double>::infinity();
+  // c_n dt / (2 m*) grows as 1/sqrt(m*): the smallest m* is the lightest pair's, M_min / 2 (as eq.
+  // 2.48's). The linear laws' dashpot reads kn (not the mendes law's tensile slope, which eq. 2.48 sees),
+  // hertz's its slope at the largest overlap the run allows (eq. H5).
+  const ContactScale scale = contact_scale();
+  double c_max = 0;
+  for (std::size_t a = 0; a < materials.size(); ++a)
+    for (std::size_t b = 0; b < materials.size(); ++b) {
+      const PairParams& p = materials.pair(a, b);
+      c_max = std::max(c_max, with_normal_law(p.law, [&](auto law) {
+                         using D = typename decltype(law)::Damping;
+                         return D::largest_normal(p, 0.5 * mmin, std::is_same_v<D, HertzDamping> ? law.stiffness(p, scale) : p.kn);
+                       }));
+    }
+  return c_max > 0 ? mmin / c_max : std::numeric_limits<double>::infinity();  // 2 m* / c_max
 }
 
 ContactScale Simulation::contact_scale() const {

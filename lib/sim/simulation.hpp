@@ -105,8 +105,15 @@ class Simulation {
     return periodic.unwrapped(particles.x[k], particles.image[k]);
   }
 
-  // Critical time step of eq. 2.48 (without FRAC): 2 sqrt(M_min / (2 K_max)).
+  // Critical time step of eq. 2.48 (without FRAC): 2 sqrt(M_min / (2 K_max)). The dashpot
+  // (contact/damping.hpp) is stable below it at any damping.
   double critical_time_step() const;
+  // The dashpot's limit 2 m*/c_max, m* = M_min/2 the lightest pair's (c_max: the largest normal
+  // coefficient there): beyond it, c dt / (2 m*) > 1 and the damped oscillator's discrete motion
+  // alternates in sign each step where the exact one creeps back without rebound
+  // (docs/contact-laws.md, "The dashpot in time"): a cap on the step, FRAC or not. Infinite
+  // without damping.
+  double dashpot_time_step() const;
   // The largest radius and overlap of this run's contacts, for a stiffness that grows with them.
   ContactScale contact_scale() const;
 
