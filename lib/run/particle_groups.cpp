@@ -55,14 +55,12 @@ Vec3 force_on_prescribed(const Simulation& sim) {
   return sum;
 }
 
-std::string describe_group(const Simulation& sim, const ParticleGroupSpec& group, std::size_t count) {
+std::string describe_group(const Simulation& sim, const ParticleGroupSpec& group) {
   std::ostringstream s;
-  s << count << " particles (";
   const char* sep = "";
   if (group.material >= 0) s << sep << "material \"" << sim.materials.materials()[group.material].name << "\"", sep = ", ";
   if (group.by_ids) s << sep << "ids " << group.id_first << " to " << group.id_last, sep = ", ";
   if (group.region) s << sep << (group.inside ? "inside" : "outside") << " the region";
-  s << ")";
   return s.str();
 }
 

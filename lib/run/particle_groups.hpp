@@ -31,7 +31,7 @@ std::size_t end_prescribed(Simulation& sim);
 // sum of their net loads less their weight [N]. Only after a step (Simulation::net_force).
 Vec3 force_on_prescribed(const Simulation& sim);
 
-// "N particles (material "B2", ids 0-9, in region box)": how a group is reported on stderr.
-std::string describe_group(const Simulation& sim, const ParticleGroupSpec& group, std::size_t count);
+// How a group is named in messages: "material "B2", ids 0 to 9, inside the region".
+std::string describe_group(const Simulation& sim, const ParticleGroupSpec& group);
 
 }  // namespace dem

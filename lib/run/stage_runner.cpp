@@ -65,11 +65,10 @@ void start_velocities(Simulation& sim, const Scene& scene, const StageSpec& stag
     for (std::size_t k = 0; k < list.size(); ++k) {
       const std::size_t n = prescribe ? start_prescribed(sim, list[k]) : set_group_velocity(sim, list[k]);
       if (n == 0)
-        throw InputError(scene.path + ": stage "" + stage.name + "": [[stage." + key + "]] entry " + std::to_string(k) +
-                         " selects no particle (" + describe_group(sim, list[k].group, 0) +
-                         "); check the material, ids or region against the particles of --in");
-      std::cerr << "stage " << stage.name << ": " << (prescribe ? "prescribed the velocity of " : "set the velocity of ")
-                << describe_group(sim, list[k].group, n) << "\n";
+        throw InputError(scene.path + ": stage." + key + "[" + std::to_string(k) + "] of stage \"" + stage.name + "\" selects no particle (" +
+                         describe_group(sim, list[k].group) + "); check the material, ids or region against the particles of --in");
+      std::cerr << "stage " << stage.name << ": " << (prescribe ? "prescribed the velocity of " : "set the velocity of ") << n
+                << " particles (" << describe_group(sim, list[k].group) << ")\n";
     }
   }
 }
