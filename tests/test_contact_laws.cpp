@@ -373,6 +373,53 @@ TEST(MendesBond, SimulationBreaksAtS0AndNeverReforms) {
   EXPECT_LE(push_back_and_pull(sim, kPullRate, r.s_break), 0.0) << "no attraction after the break";
 }
 
+// SPEC §6 Decision (separation): mendes with eps >= 1/e (the impact case's eps = 0.5) has no
+// tension branch, so s0 = 0 and the bond breaks as soon as the particles separate (a gap beyond
+// round-off: kBondTouchTolerance x 2R*, 1e-9 m here). Bonded at an overlap and pulled apart at
+// 2 mm/s (2.9e-9 m per step): it holds (no tension) while the spheres overlap or touch, and the flag
+// drops in the first step whose gap exceeds that tolerance; pushed back, the contact is unbonded:
+// no tension and no cohesion (its shear strength is mu f_n, not C + mu f_n).
+TEST(MendesBond, WithoutTensionBreaksWhenParticlesSeparate) {
+  Material mat = bond_material(NormalLaw::Mendes, 0.5);
+  mat.cohesion = 0.5;
+  Simulation sim = two_sphere_sim(mat);
+  ASSERT_FALSE(sim.materials.pair(0, 0).mendes_tension);
+  const PullResult r = pull_until_break(sim, kPullRate, [](double) { return 0.0; });
+  const double tolerance = kBondTouchTolerance * 2 * (kRadius / 2);  // 2R*, R* = a/2
+  EXPECT_GT(r.s_break, tolerance) << "holds while the spheres touch";
+  EXPECT_LE(r.s_break, tolerance + r.step_ds * (1 + 1e-6)) << "breaks in the first step apart";
+  EXPECT_LE(r.max_tension, 0.0);
+  EXPECT_LE(push_back_and_pull(sim, kPullRate, r.s_break), 0.0) << "no attraction after the break";
+
+  // Cohesion: a contact at overlap u0 slid tangentially by far more than tau / kt in one step
+  // carries |f_t| = tau: C + mu f_n while bonded, mu f_n once the bond is gone.
+  const PairParams p = sim.materials.pair(0, 0);
+  const double u0 = 1e-5, fn = kKn * u0, mu = std::tan(30 * kDegree);
+  auto sliding_force = [&](std::uint8_t& bonded) {
+    ContactKinematics c;
+    c.n = Vec3::UnitX();
+    c.overlap = u0;
+    c.v_rel = Vec3(0, 1.0, 0);  // 1 m/s tangential: kt v dt = 1e5 x 1 x dt >> tau
+    c.w_arm = Vec3::Zero();
+    c.m_eff = 1.0;
+    c.r_eff = kRadius / 2;
+    Vec3 spring = Vec3::Zero();
+    return ContactModel<MendesNormal>::evaluate(p, c, 1e-3, spring, bonded).tangential.norm();
+  };
+  std::uint8_t intact = 1, broken = 0;
+  EXPECT_NEAR(sliding_force(intact), mat.cohesion + mu * fn, 1e-9);
+  EXPECT_EQ(intact, 1) << "compression never breaks it";
+  EXPECT_NEAR(sliding_force(broken), mu * fn, 1e-9);
+  // The law itself: bonded at a gap within the tolerance it holds, beyond it it breaks for good.
+  std::uint8_t b = 1;
+  EXPECT_EQ(law_tension<MendesNormal>(p, 0.5 * tolerance, b), 0.0);
+  EXPECT_EQ(b, 1);
+  EXPECT_EQ(law_tension<MendesNormal>(p, 2 * tolerance, b), 0.0);
+  EXPECT_EQ(b, 0);
+  EXPECT_NEAR(-law_tension<MendesNormal>(p, -u0, b), fn, 1e-12) << "compression as before";
+  EXPECT_EQ(b, 0) << "never re-forms";
+}
+
 // ---------------------------------------------------------------------------------------------
 // 2. Liu law (eq. 2.21): tension k_n s up to F, then an abrupt break; no tension without a bond.
 

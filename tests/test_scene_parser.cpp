@@ -449,5 +449,72 @@ std::vector<BadCase> insert_bad_cases() {
 
 INSTANTIATE_TEST_SUITE_P(BadInsert, SceneRejects, ::testing::ValuesIn(insert_bad_cases()));
 
+// [[stage.set_velocity]], [[stage.prescribe]] and the bond action's gap: valid entries, then each
+// malformed key rejected with its name and what is allowed.
+const std::string kVelocities = R"(
+[[stage.action]]
+type = "bond"
+gap = 1e-4
+
+[[stage.set_velocity]]
+material = "glass"
+velocity = [0.0, 0.0, -5.0]
+angular_velocity = [0.0, 1.0, 0.0]
+
+[[stage.prescribe]]
+ids = [0, 9]
+region = { type = "box", min = [0.0, 0.0, 0.0], max = [0.02, 0.02, 0.01] }
+inside = false
+velocity = [0.001, 0.0, 0.0]
+)";
+
+std::string with_velocities(const std::string& from, const std::string& to) { return kValid + replace(kVelocities, from, to); }
+
+TEST(SceneParser, VelocityGroupsAndBondGapParse) {
+  const Scene s = parse_scene(kValid + kVelocities, "scene.toml");
+  const StageSpec& st = s.stages[0];
+  ASSERT_EQ(st.actions.size(), 1u);
+  EXPECT_EQ(st.actions[0].gap, 1e-4);
+  ASSERT_EQ(st.set_velocities.size(), 1u);
+  EXPECT_EQ(st.set_velocities[0].group.material, 0);
+  EXPECT_FALSE(st.set_velocities[0].group.by_ids);
+  EXPECT_EQ(st.set_velocities[0].velocity, Vec3(0, 0, -5));
+  EXPECT_EQ(st.set_velocities[0].angular_velocity, Vec3(0, 1, 0));
+  ASSERT_EQ(st.prescribes.size(), 1u);
+  const ParticleGroupSpec& g = st.prescribes[0].group;
+  EXPECT_EQ(g.material, -1);
+  EXPECT_TRUE(g.by_ids && g.id_first == 0 && g.id_last == 9);
+  EXPECT_TRUE(g.region && !g.inside);
+  EXPECT_FALSE(st.prescribes[0].angular_velocity) << "none given: zero spin";
+  const Scene plain = parse_scene(kValid + "\n[[stage.action]]\ntype = \"bond\"\n", "scene.toml");
+  EXPECT_EQ(plain.stages[0].actions[0].gap, 1e-6) << "the default: round-off of touching positions";
+}
+
+std::vector<BadCase> velocity_bad_cases() {
+  return {
+      {"set_velocity: no group", with_velocities("material = \"glass\"\nvelocity", "velocity"),
+       {"stage[0].set_velocity[0].material", "give at least one of material", "ids = [first, last]", "region"}},
+      {"set_velocity: unknown material", with_velocities("material = \"glass\"", "material = \"B2\""),
+       {"stage[0].set_velocity[0].material = \"B2\"", "no material of that name", "\"glass\""}},
+      {"set_velocity: no velocity", with_velocities("velocity = [0.0, 0.0, -5.0]\n", ""), {"stage[0].set_velocity[0].velocity is missing"}},
+      {"set_velocity: velocity not a vector", with_velocities("velocity = [0.0, 0.0, -5.0]", "velocity = -5.0"),
+       {"stage[0].set_velocity[0].velocity = -5", "array of 3 numbers"}},
+      {"set_velocity: unknown key", with_velocities("angular_velocity", "spin = 1.0\nangular_velocity"),
+       {"stage[0].set_velocity[0].spin", "unknown key", "allowed here"}},
+      {"prescribe: ids of one", with_velocities("ids = [0, 9]", "ids = [3]"), {"stage[0].prescribe[0].ids", "two integers [first, last]"}},
+      {"prescribe: ids reversed", with_velocities("ids = [0, 9]", "ids = [9, 0]"), {"stage[0].prescribe[0].ids", "0 <= first <= last"}},
+      {"prescribe: ids not integers", with_velocities("ids = [0, 9]", "ids = [0.5, 9]"), {"stage[0].prescribe[0].ids", "two integers"}},
+      {"prescribe: inside without region",
+       with_velocities("region = { type = \"box\", min = [0.0, 0.0, 0.0], max = [0.02, 0.02, 0.01] }\n", ""),
+       {"stage[0].prescribe[0].inside = false", "give region too"}},
+      {"prescribe: bad region", with_velocities("max = [0.02, 0.02, 0.01]", "max = [0.02, -0.02, 0.01]"),
+       {"stage[0].prescribe[0].region"}},
+      {"bond: negative gap", with_velocities("gap = 1e-4", "gap = -1e-4"), {"stage[0].action[0].gap = -0.0001", "out of range", "[0, 1)"}},
+      {"bond: gap of a radius", with_velocities("gap = 1e-4", "gap = 1.0"), {"stage[0].action[0].gap = 1", "fraction of the smaller radius"}},
+  };
+}
+
+INSTANTIATE_TEST_SUITE_P(BadVelocity, SceneRejects, ::testing::ValuesIn(velocity_bad_cases()));
+
 }  // namespace
 }  // namespace dem

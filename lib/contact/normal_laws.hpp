@@ -40,6 +40,14 @@ inline constexpr PropertyKey kMendesEpsilonKey{.keyword = "epsilon", .number = &
                                                .lo_open = true, .hi_open = true, .unit = "(mendes law, docs/physics.md eq. P12)", .si_unit = "1",
                                                .mixing = &MixingRules::strength, .default_value = 1e-4};
 
+// A bond of a law without tension (`mendes` with epsilon >= 1/e) breaks as soon as its particles
+// separate (SPEC §6 Decision (separation): s0 = 0). "Separate" means a gap beyond round-off: up to
+// this fraction of the effective diameter 2R* (at least the smaller radius of a pair; a wall
+// contact: the sphere's diameter) the particles still touch, so that a touching lattice bonded by
+// the stage action `bond` (whose default bond_gap is the same 1e-6, of the smaller radius) does not
+// lose the bonds whose centres happen to lie a few ulps too far apart.
+inline constexpr double kBondTouchTolerance = 1e-6;
+
 // The energy bound of the linear compression every law shares: ½ kn u² [J].
 inline double linear_compression_energy(const PairParams& p, double u) { return u > 0 ? 0.5 * p.kn * u * u : 0.0; }
 
@@ -95,16 +103,22 @@ struct LiuNormal {
 
 // Mendes (eq. 2.22-2.25, signs as SPEC §6): linear in compression; while bonded the attraction is
 // T(s) = kn [D (1 - exp(-A s)) - s], s = -u, rising to F at s* = D ln(L) / L and softening to zero
-// at s0, where the bond breaks.
+// at s0, where the bond breaks. For epsilon >= 1/e there is no tension branch: s0 = 0, the bond
+// breaks once the particles separate (gap beyond kBondTouchTolerance 2R*); it carries its
+// cohesion in shear until then.
 struct MendesNormal {
   using Damping = ViscousDamping;
   static constexpr std::string_view keyword = "mendes";
   static constexpr bool four_wide = false;
   using WithoutBonds = CundallNormal;  // its tension needs a bond
-  static double elastic(const PairParams& p, double u, double /*r_eff*/, bool& bonded) {
+  static double elastic(const PairParams& p, double u, double r_eff, bool& bonded) {
     if (u >= 0) return p.kn * u;
-    if (!bonded || !p.mendes_tension) return 0.0;
+    if (!bonded) return 0.0;
     const double s = -u;
+    if (!p.mendes_tension) {
+      if (s > kBondTouchTolerance * 2 * r_eff) bonded = false;  // apart: s0 = 0 (SPEC §6)
+      return 0.0;
+    }
     if (s >= p.break_separation) {
       bonded = false;
       return 0.0;

@@ -335,9 +335,10 @@ double all_forces(const ForceLoopInput& in, ContactList& pairs, ContactList& wal
 void set_lagging_thread_for_tests(int thread, int microseconds) { lagging = {thread, microseconds}; }
 
 void counted_wall_touches(const Particles& p, const std::vector<WallGeometry>& geometry, const ContactList& wc, int first,
-                          int n, Vec3* to_wall, std::uint8_t* touching, std::uint8_t* take, int* order) {
+                          int n, Vec3* to_wall, std::uint8_t* touching, std::uint8_t* take, int* order, double gap) {
   const int i = wc.slot_i[first];
-  const double r2 = p.radius[i] * p.radius[i];
+  const double reach = gap > 0 ? p.radius[i] * (1 + gap) : p.radius[i];
+  const double r2 = reach * reach;
   for (int e = 0; e < n; ++e) {
     const WallGeometry& g = geometry[wc.slot_j[first + e]];
     // Farther from the element's plane than the radius (with a margin far above round-off): no

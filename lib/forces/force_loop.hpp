@@ -132,9 +132,11 @@ void select_wall_contacts(const Vec3* to_wall, const std::uint8_t* touching, int
 // element's closest point (`to_wall`; left unset for a candidate that neither touches nor was a
 // contact or bond), whether it touches, and which touches count (`take`, by
 // select_wall_contacts). Shared by the force loop and the bond action, so that a bond is made
-// exactly where the force loop sees a contact. The arrays hold n entries each.
+// exactly where the force loop sees a contact. The arrays hold n entries each. `gap` (the bond
+// action's tolerance, a fraction of the radius) counts a sphere apart by less than gap x radius as
+// touching; the force loop passes 0.
 void counted_wall_touches(const Particles& p, const std::vector<WallGeometry>& geometry, const ContactList& wc, int first,
-                          int n, Vec3* to_wall, std::uint8_t* touching, std::uint8_t* take, int* order);
+                          int n, Vec3* to_wall, std::uint8_t* touching, std::uint8_t* take, int* order, double gap = 0);
 
 // For every candidate of `pairs` and `walls`: decides whether it is a contact (`active`: touching,
 // or holding by a bond), and if so fills .sum and .normal (of pair contacts only where

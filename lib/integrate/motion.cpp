@@ -19,15 +19,18 @@ inline bool finite_state(const MotionArrays& a, long i) {
   return (std::abs(s.x()) <= DBL_MAX) & (std::abs(s.y()) <= DBL_MAX) & (std::abs(s.z()) <= DBL_MAX);
 }
 
-// Particle i: fixed, it stops; free, it moves under its net load (eq. 2.31-2.34). False where its
-// new state is not finite.
+// Particle i: held, it stops; prescribed, it moves on at its own v and w, whatever its load; free,
+// it moves under its net load (eq. 2.31-2.34). False where its new state is not finite.
 inline bool move_one(const MotionArrays& a, const MotionConstants& c, long i) {
   if (a.fixed && a.fixed[i]) {
-    a.v[i] = a.w[i] = Vec3::Zero();
-    return true;
+    if (a.fixed[i] != kPrescribed) {
+      a.v[i] = a.w[i] = Vec3::Zero();
+      return true;
+    }
+  } else {
+    a.v[i] = (c.ar * a.v[i] + a.force[i].v * (c.dt / a.mass[i])) * c.br;
+    a.w[i] = (c.at * a.w[i] + a.torque[i].v * (c.dt / sphere_inertia(a.mass[i], a.radius[i]))) * c.bt;
   }
-  a.v[i] = (c.ar * a.v[i] + a.force[i].v * (c.dt / a.mass[i])) * c.br;
-  a.w[i] = (c.at * a.w[i] + a.torque[i].v * (c.dt / sphere_inertia(a.mass[i], a.radius[i]))) * c.bt;
   a.x[i] += a.v[i] * c.dt;
   if (c.box.any()) c.box.wrap(a.x[i], a.image[i]);
   return finite_state(a, i);

@@ -29,12 +29,13 @@ struct MotionArrays {
   Vec3i* image;  // periods crossed
   const double* mass;
   const double* radius;
-  const std::uint8_t* fixed;  // null where no particle is fixed
+  const std::uint8_t* fixed;  // Particles::fixed; null where no particle is held or prescribed
   const LoadSum* force;       // the net loads of the force loop (ForceBlocks)
   const LoadSum* torque;
 };
 
-// Particles [first, last): fixed ones stop, the others move (and are wrapped into the period).
+// Particles [first, last): held ones stop, prescribed ones move at their own v and w, the others
+// under their loads (all wrapped into the period).
 // Returns the last particle whose new state is not finite (NaN or Inf in x, v or w makes a
 // coordinate of x + v + w NaN or Inf; so does a sum beyond 1e308: a state as broken), or -1.
 long move_particles(const MotionArrays& a, const MotionConstants& c, long first, long last);

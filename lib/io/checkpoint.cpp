@@ -733,7 +733,7 @@ void read_checkpoint(const std::string& path, Simulation& sim, CheckpointMeta& m
   for (std::size_t k = 0; k < particle.image.size() / 3; ++k) p.image[k] = Vec3i(particle.image[3 * k], particle.image[3 * k + 1], particle.image[3 * k + 2]);
   if (p.fixed.empty()) p.fixed.assign(n, 0);
   for (std::uint8_t f : p.fixed)
-    if (f > 1) throw IoError(path + ": /particles/fixed holds neither 0 nor 1 (damaged file)");
+    if (f > kPrescribed) throw IoError(path + ": /particles/fixed holds a value other than 0, 1 or 2 (damaged file)");
 
   const std::vector<PropertyKey> keys = all_property_keys();
   MaterialArrays materials;

@@ -1171,6 +1171,37 @@ InsertSpec read_insert(TableReader& r, const Scene& sc, double duration) {
   return g;
 }
 
+// The group of a [[stage.set_velocity]] or [[stage.prescribe]] entry: material, ids = [first,
+// last] and region (with inside), at least one of the three.
+ParticleGroupSpec read_particle_group(TableReader& r, const Scene& sc) {
+  ParticleGroupSpec g;
+  if (r.has("material")) g.material = material_ref(r, "material", sc.materials);
+  if (const toml::node* n = r.node("ids")) {
+    const toml::array* a = n->as_array();
+    if (!a || a->size() != 2 || !a->get(0)->is_integer() || !a->get(1)->is_integer())
+      r.fail_at(n, "ids", "expected an array of two integers [first, last] (ids first to last, both included)");
+    g.by_ids = true;
+    g.id_first = *a->get(0)->value<int64_t>();
+    g.id_last = *a->get(1)->value<int64_t>();
+    if (g.id_first < 0 || g.id_last < g.id_first)
+      r.fail_at(n, "ids", "expected 0 <= first <= last (particle ids are non-negative)");
+  }
+  if (r.has("region")) g.region = read_region(r, "region");
+  g.inside = r.boolean_or("inside", true);
+  if (r.has("inside") && !g.region) r.fail("inside", "inside applies to a region: give region too");
+  if (g.material < 0 && !g.by_ids && !g.region)
+    r.fail_at(nullptr, "material", "choose the particles: give at least one of material = \"name\", ids = [first, last], region = {...}");
+  return g;
+}
+
+VelocitySpec read_velocity_entry(TableReader& r, const Scene& sc) {
+  VelocitySpec v;
+  v.group = read_particle_group(r, sc);
+  v.velocity = r.vec3("velocity");
+  if (r.has("angular_velocity")) v.angular_velocity = r.vec3("angular_velocity");
+  return v;
+}
+
 void read_stages(TableReader& top, Scene& sc) {
   const auto list = top.tables("stage");
   for (std::size_t k = 0; k < list.size(); ++k) {
@@ -1202,6 +1233,7 @@ void read_stages(TableReader& top, Scene& sc) {
       } else if (type == "bond") {
         act.kind = ActionSpec::Kind::Bond;
         act.walls = ar.boolean_or("walls", false);
+        act.gap = ar.number_or("gap", act.gap, 0, 1, "(fraction of the smaller radius)", false, true);
       } else {
         act.kind = ActionSpec::Kind::ResetReference;
       }
@@ -1249,6 +1281,14 @@ void read_stages(TableReader& top, Scene& sc) {
       TableReader ir(*inserts[m], top.file(), r.name(indexed("insert", m)));
       s.inserts.push_back(read_insert(ir, sc, s.duration));
       ir.finish();
+    }
+    for (const char* key : {"set_velocity", "prescribe"}) {
+      const auto entries = r.tables(key);
+      for (std::size_t m = 0; m < entries.size(); ++m) {
+        TableReader vr(*entries[m], top.file(), r.name(indexed(key, m)));
+        (std::string(key) == "prescribe" ? s.prescribes : s.set_velocities).push_back(read_velocity_entry(vr, sc));
+        vr.finish();
+      }
     }
     r.finish();
     sc.stages.push_back(std::move(s));

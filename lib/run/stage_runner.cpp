@@ -20,6 +20,7 @@
 #include "run/frames.hpp"
 #include "run/health_log.hpp"
 #include "run/interrupt.hpp"
+#include "run/particle_groups.hpp"
 #include "run/particle_track.hpp"
 #include "run/progress.hpp"
 #include "run/setup.hpp"
@@ -43,7 +44,7 @@ void apply_actions(Simulation& sim, const StageSpec& stage) {
     if (a.kind == ActionSpec::Kind::ResetReference) {
       for (std::size_t k = 0; k < p.size(); ++k) p.x_ref[k] = sim.unwrapped_position(k);
     } else if (a.kind == ActionSpec::Kind::Bond) {
-      const std::size_t n = sim.bond_present_contacts(a.walls);
+      const std::size_t n = sim.bond_present_contacts(a.walls, a.gap);
       std::cerr << "stage " << stage.name << ": bonded " << n << " contacts\n";
     } else if (a.kind == ActionSpec::Kind::Fix || a.kind == ActionSpec::Kind::Release) {
       const bool fix = a.kind == ActionSpec::Kind::Fix;
@@ -52,6 +53,23 @@ void apply_actions(Simulation& sim, const StageSpec& stage) {
     } else {
       const std::size_t removed = remove_particles(sim, *a.region, a.inside);
       std::cerr << "stage " << stage.name << ": removed " << removed << " particles, " << p.size() << " remain\n";
+    }
+  }
+}
+
+// [[stage.set_velocity]] then [[stage.prescribe]], in file order, once at the stage start (a
+// resumed run finds their effect in the periodic checkpoint: velocities and the prescribed flags).
+void start_velocities(Simulation& sim, const Scene& scene, const StageSpec& stage) {
+  for (const char* key : {"set_velocity", "prescribe"}) {
+    const bool prescribe = std::string(key) == "prescribe";
+    const std::vector<VelocitySpec>& list = prescribe ? stage.prescribes : stage.set_velocities;
+    for (std::size_t k = 0; k < list.size(); ++k) {
+      const std::size_t n = prescribe ? start_prescribed(sim, list[k]) : set_group_velocity(sim, list[k]);
+      if (n == 0)
+        throw InputError(scene.path + ": stage." + key + "[" + std::to_string(k) + "] of stage \"" + stage.name + "\" selects no particle (" +
+                         describe_group(sim, list[k].group) + "); check the material, ids or region against the particles of --in");
+      std::cerr << "stage " << stage.name << ": " << (prescribe ? "prescribed the velocity of " : "set the velocity of ") << n
+                << " particles (" << describe_group(sim, list[k].group) << ")\n";
     }
   }
 }
@@ -175,6 +193,7 @@ void run_stage(const StageOptions& o) {
     read_checkpoint(o.in, sim, meta);
     adopt_scene(sim, scene);
     apply_actions(sim, *stage);
+    start_velocities(sim, scene, *stage);
     check_inside_walls(sim, scene, o.in);
     sim.dt = choose_time_step(with_inserted_sizes(sim, *stage), scene.simulation);
     start_motions(sim, *stage);
@@ -318,6 +337,14 @@ void run_stage(const StageOptions& o) {
           std::cerr << "run-stage: servo " << stage->servos[k].wall << " holds " << servos[k].stress(f) << " Pa (target "
                     << servos[k].target << " Pa)\n";
       }
+    }
+    if (!stage->prescribes.empty()) {
+      // What the rest exerted on the prescribed particles at the last step; then they are free.
+      const Vec3 f = force_on_prescribed(sim);
+      const std::size_t n = end_prescribed(sim);
+      if (!o.quiet)
+        std::cerr << "run-stage: force on the " << n << " prescribed particles at the end (contacts and walls): [" << f.x() << ", " << f.y()
+                  << ", " << f.z() << "] N; they move on freely\n";
     }
     // Before the checkpoint: a finished checkpoint means finished outputs (make).
     wall_log.finish();

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "contact/normal_laws.hpp"
 #include "core/types.hpp"
 #include "scene/region.hpp"
 #include "state/materials.hpp"
@@ -99,6 +100,10 @@ struct ActionSpec {
   std::optional<Region> region;  // Remove, Fix (required); Release (none: every particle)
   bool inside = true;   // Remove, Fix, Release: particles inside (true) or outside (false) the region
   bool walls = false;   // Bond: also bond the particles touching walls
+  // Bond: a pair apart by less than gap x the smaller radius (a sphere and a wall: x its radius)
+  // counts as touching; the default, round-off of touching positions, is the gap below which a
+  // bond of a law without tension still holds (contact/normal_laws.hpp).
+  double gap = kBondTouchTolerance;
 };
 
 // One `[[stage.motion]]` entry: one part of a wall's motion. Entries selecting the same wall
@@ -143,6 +148,24 @@ struct InsertSpec {
   int attempts = 100;                     // positions tried per particle and event before deferring it
 };
 
+// A group of particles chosen at the start of a stage by material, id range and region: a
+// particle belongs when it meets every criterion given (at least one is).
+struct ParticleGroupSpec {
+  int material = -1;               // material index; -1: any
+  bool by_ids = false;             // ids in [id_first, id_last]
+  Index id_first = 0, id_last = 0;
+  std::optional<Region> region;    // centre inside (or outside, `inside` = false) the region
+  bool inside = true;
+};
+
+// `[[stage.set_velocity]]` (given once, at the stage start) and `[[stage.prescribe]]` (kept for the
+// whole stage, forces ignored): a group's velocity and angular velocity.
+struct VelocitySpec {
+  ParticleGroupSpec group;
+  Vec3 velocity = Vec3::Zero();          // [m/s]
+  std::optional<Vec3> angular_velocity;  // [rad/s]; set_velocity: none = spins kept; prescribe: none = zero
+};
+
 struct StageSpec {
   std::string name;
   double duration = 0;      // [s]
@@ -153,6 +176,8 @@ struct StageSpec {
   std::vector<MotionSpec> motions;  // wall motions during the stage (others stay fixed)
   std::vector<ServoSpec> servos;    // servo-controlled wall groups
   std::vector<InsertSpec> inserts;  // particles poured in during the stage
+  std::vector<VelocitySpec> set_velocities;  // applied in order at the start, after the actions
+  std::vector<VelocitySpec> prescribes;      // groups moved at a set velocity for the whole stage
 };
 
 struct Scene {

@@ -80,6 +80,13 @@ double wall_power(const Particles& p, const std::vector<WallGeometry>& geometry,
   return power;
 }
 
+double prescribed_power(const Particles& p, const LoadSum* force, const LoadSum* torque) {
+  double power = 0;
+  for (std::size_t k = 0; k < p.size(); ++k)
+    if (p.fixed[k] == kPrescribed) power -= force[k].v.dot(p.v[k]) + torque[k].v.dot(p.w[k]);
+  return power;
+}
+
 double EnergyBalance::scale() const {
   return std::max(0.0, start.kinetic) + stored0 + wall_work_abs + std::abs(now.potential - start.potential) + potential_scale;
 }

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "contact/contact_list.hpp"
+#include "state/load_sum.hpp"
 #include "state/materials.hpp"
 #include "state/particles.hpp"
 #include "state/periodic.hpp"
@@ -51,6 +52,11 @@ double stored_energy_bound(const Particles& p, const MaterialTable& materials, c
 // active wall contacts (f the force on the particle). Walls at rest are skipped.
 double wall_power(const Particles& p, const std::vector<WallGeometry>& geometry, const ContactList& wall_contacts);
 
+// Power the prescribed particles (Particles::kPrescribed) deliver: what holds them to their motion
+// cancels their net load (force and torque, gravity included), so it delivers
+// -Σ (F·v + T·ω) over them [W].
+double prescribed_power(const Particles& p, const LoadSum* force, const LoadSum* torque);
+
 // The running balance kept by Simulation between a reference step and now.
 struct EnergyBalance {
   bool valid = false;          // false: the next step takes a new reference
@@ -59,7 +65,7 @@ struct EnergyBalance {
   MechanicalEnergy start;      // at the reference
   double stored0 = 0;          // stored_energy_bound at the reference [J]
   double potential_scale = 0;  // Σ m |g| a: one radius of fall for every particle [J]
-  double wall_work = 0;        // ∫ wall_power dt since the reference [J]
+  double wall_work = 0;        // ∫ (wall_power + prescribed_power) dt since the reference [J]
   double wall_work_abs = 0;    // ∫ |wall_power| dt [J]
   MechanicalEnergy now;        // at the last check
 

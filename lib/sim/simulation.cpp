@@ -25,8 +25,9 @@ void Simulation::advance() {
   if (params.sort_every > 0 && step % params.sort_every == 0 && static_cast<long>(particles.size()) >= params.sort_min_particles)
     sort_storage();
   compute_forces();
-  if (params.max_energy_gain > 0) audit_energy();
-  integrate(particles.any_fixed());
+  const bool any_fixed = particles.any_fixed();
+  if (params.max_energy_gain > 0) audit_energy(any_fixed && particles.any_prescribed());
+  integrate(any_fixed);
   time += dt;
   ++step;
   if (has_bonds_) count_bonds();  // bonds only ever break: stop paying once all are gone
@@ -120,15 +121,19 @@ void Simulation::report_overlap(double worst) const {
   throw PhysicsError(m.str(), "lower the time step (frac), raise the stiffness kn, or lower the load or impact speed");
 }
 
-std::size_t Simulation::bond_present_contacts(bool walls_too) {
+std::size_t Simulation::bond_present_contacts(bool walls_too, double gap) {
   find_contacts();
-  // The pairs touching now (the test of the force loop) and the contacts holding already.
+  // The pairs touching now (the test of the force loop) or apart by less than the gap, and the
+  // contacts holding already. The neighbour list holds every pair within the skin, which is far
+  // wider than a gap of round-off.
   const Particles& p = particles;
   std::size_t n = 0;
   for (std::size_t k = 0; k < pairs_.size(); ++k) {
     const int i = pairs_.slot_i[k], j = pairs_.slot_j[k];
     if (p.both_fixed(i, j)) continue;
-    if (pair_touching(p, periodic, i, j) || pairs_.bonded[k]) pairs_.bonded[k] = pairs_.active[k] = 1, ++n;
+    const bool near = pair_touching(p, periodic, i, j) ||
+                      (gap > 0 && spheres_touch(separation(p, periodic, i, j), p.radius[i] + gap * std::min(p.radius[i], p.radius[j]), p.radius[j]));
+    if (near || pairs_.bonded[k]) pairs_.bonded[k] = pairs_.active[k] = 1, ++n;
   }
   if (walls_too) {
     // Per particle, the touches the force loop counts (select_wall_contacts): where mesh elements
@@ -139,7 +144,7 @@ std::size_t Simulation::bond_present_contacts(bool walls_too) {
     for (std::size_t r = 0; r + 1 < wall_runs_.size(); ++r) {
       const int first = wall_runs_[r], count = wall_runs_[r + 1] - first;
       to_wall.resize(count), touching.resize(count), take.resize(count), order.resize(count);
-      counted_wall_touches(p, wall_geometry_, walls_, first, count, to_wall.data(), touching.data(), take.data(), order.data());
+      counted_wall_touches(p, wall_geometry_, walls_, first, count, to_wall.data(), touching.data(), take.data(), order.data(), gap);
       for (int e = 0; e < count; ++e)
         if (take[e] || walls_.bonded[first + e]) walls_.bonded[first + e] = walls_.active[first + e] = 1, ++n;
     }
@@ -370,7 +375,7 @@ void Simulation::integrate(bool any_fixed) {
   }
 }
 
-void Simulation::audit_energy() {
+void Simulation::audit_energy(bool any_prescribed) {
   // Called with the forces at x^n computed and the velocities still at n-1/2 (sim/energy_audit.hpp).
   EnergyBalance& b = energy_;
   if (!b.valid || b.particles != particles.size()) {
@@ -384,7 +389,8 @@ void Simulation::audit_energy() {
     return;
   }
   // Static walls do no work: wall_power would skip every contact, serially.
-  const double work = walls_move_ ? wall_power(particles, wall_geometry_, walls_) * dt : 0.0;
+  double work = walls_move_ ? wall_power(particles, wall_geometry_, walls_) * dt : 0.0;
+  if (any_prescribed) work += prescribed_power(particles, block_force_.data(), block_torque_.data()) * dt;
   b.wall_work += work;
   b.wall_work_abs += std::abs(work);
   if ((step - b.step0) % kEnergyCheckEvery != 0) return;

@@ -89,9 +89,11 @@ class Simulation {
   // key, slots found again at the next step.
   void set_contacts(ContactList pairs, ContactList walls);
 
-  // Stage action `bond`: Φ = 1 for every particle contact present now (and wall contacts if asked).
-  // Returns how many contacts were bonded.
-  std::size_t bond_present_contacts(bool walls_too);
+  // Stage action `bond`: Φ = 1 for every particle contact present now (and wall contacts if asked),
+  // a pair counting as present when its gap is below `gap` x the smaller radius (a wall contact:
+  // x the sphere's radius); gap = 0: touching as the force loop sees it (overlap > 0). Returns how
+  // many contacts were bonded.
+  std::size_t bond_present_contacts(bool walls_too, double gap = 0);
   bool has_bonds() const { return has_bonds_; }
   // Whether pair_contacts()'s normals and forces are those of the last step (SimParams::keep_pair_results).
   bool pair_results_kept() const { return pair_results_kept_; }
@@ -130,10 +132,13 @@ class Simulation {
   // force) per wall element this step.
   std::vector<WallLoad> wall_loads(bool torques = false) const;
   const std::vector<WallGeometry>& wall_geometry() const { return wall_geometry_; }
+  // Particle slot k's net load of the last step (contacts, walls and gravity) [N]; zero before
+  // the first step.
+  Vec3 net_force(std::size_t k) const { return k < block_force_.size() ? block_force_[k].v : Vec3::Zero(); }
 
  private:
   [[noreturn]] void report_overlap(double worst) const;
-  void audit_energy();
+  void audit_energy(bool any_prescribed);
   [[noreturn]] void report_energy_gain() const;
   void update_wall_geometry();
   void sort_storage();

@@ -14,9 +14,16 @@ namespace dem {
 inline double sphere_volume(double a) { return 4.0 / 3.0 * std::numbers::pi * a * a * a; }
 inline double sphere_mass(double density, double a) { return density * sphere_volume(a); }  // m = rho 4/3 pi a^3
 inline double sphere_inertia(double m, double a) { return 0.4 * m * a * a; }  // I = 2/5 m a^2
-// Two fixed particles never interact (the search skips such pairs; the neighbour list is rebuilt
-// when a fixed flag changes).
-inline bool both_fixed(std::uint8_t fixed_i, std::uint8_t fixed_j) { return fixed_i && fixed_j; }
+// Values of Particles::fixed. A held or prescribed particle ignores its load (the integrator sets
+// its motion) and acts on others as if infinitely heavy.
+inline constexpr std::uint8_t kFree = 0;
+inline constexpr std::uint8_t kHeld = 1;        // stage action `fix`: at rest
+inline constexpr std::uint8_t kPrescribed = 2;  // [[stage.prescribe]]: moves at its v and w, kept constant
+// Two held particles never interact (the search skips such pairs; the neighbour list is rebuilt
+// when a fixed flag changes). Prescribed particles interact with all others, so that a bond
+// between two of them (pulled apart at a set speed) is loaded.
+// (Tested in this order so that a free particle, the common case, costs one test as before.)
+inline bool both_fixed(std::uint8_t fixed_i, std::uint8_t fixed_j) { return fixed_i && fixed_j && (fixed_i & fixed_j & kHeld); }
 
 struct Particles {
   std::vector<Index> id;
@@ -28,8 +35,10 @@ struct Particles {
   std::vector<double> radius;  // [m]
   std::vector<double> mass;    // [kg], m = rho 4/3 pi a^3
   std::vector<int> material;   // index into the material table
-  // 1: fixed in place (as LAMMPS's fix freeze: a rough base of spheres, a fixed boundary layer):
-  // never moves, and acts on others as if infinitely heavy; two fixed particles do not interact.
+  // kHeld (1): fixed in place (as LAMMPS's fix freeze: a rough base of spheres, a fixed boundary
+  // layer): never moves, and acts on others as if infinitely heavy; two held particles do not
+  // interact. kPrescribed (2): moves at its own v and w for the stage ([[stage.prescribe]]), also
+  // infinitely heavy in its contacts. kFree (0): moves under its load.
   std::vector<std::uint8_t> fixed;
 
   std::size_t size() const { return id.size(); }
@@ -48,8 +57,12 @@ struct Particles {
   }
 
   bool both_fixed(std::size_t i, std::size_t j) const { return dem::both_fixed(fixed[i], fixed[j]); }
-  // Whether any particle is fixed (read every step: memchr scans 10^5 flags in a few microseconds).
-  bool any_fixed() const { return !fixed.empty() && std::memchr(fixed.data(), 1, fixed.size()) != nullptr; }
+  // Whether any particle is held or prescribed, and whether any is prescribed (read every step:
+  // memchr scans 10^5 flags in a few microseconds, and stops at the first held particle).
+  bool any_fixed() const {
+    return !fixed.empty() && (std::memchr(fixed.data(), kHeld, fixed.size()) != nullptr || any_prescribed());
+  }
+  bool any_prescribed() const { return !fixed.empty() && std::memchr(fixed.data(), kPrescribed, fixed.size()) != nullptr; }
 
   double inertia(std::size_t k) const { return sphere_inertia(mass[k], radius[k]); }
 
