@@ -12,6 +12,16 @@ import numpy as np  # noqa: E402
 from post_table import save_atomically  # noqa: E402
 
 
+
+def counts_beside(ax, t, series, ylabel: str) -> None:
+    """Counts on a second y axis beside ax's curves, with one legend for both axes."""
+    twin = ax.twinx()
+    for values, colour, style, label in series:
+        twin.plot(t, values, color=colour, ls=style, label=label)
+    twin.set_ylabel(ylabel)
+    lines = ax.get_lines() + twin.get_lines()
+    ax.legend(lines, [line.get_label() for line in lines], fontsize=8)
+
 def read_health(csv_path: str):
     """The columns of a health log by name, as float arrays."""
     with open(csv_path) as f:
@@ -44,12 +54,8 @@ def main(csv_path: str, png_path: str) -> None:
     ax.plot(t, c["coordination"], color="C0", label="coordination number (pairs only)")
     ax.set_ylabel("coordination number [contacts per particle]")
     ax.set_title("Contacts")
-    twin = ax.twinx()
-    twin.plot(t, c["pair_contacts"], color="C1", ls="--", label="particle-particle contacts")
-    twin.plot(t, c["wall_contacts"], color="C2", ls=":", label="particle-wall contacts")
-    twin.set_ylabel("contacts [count]")
-    lines = ax.get_lines() + twin.get_lines()
-    ax.legend(lines, [line.get_label() for line in lines], fontsize=8)
+    counts_beside(ax, t, [(c["pair_contacts"], "C1", "--", "particle-particle contacts"),
+                          (c["wall_contacts"], "C2", ":", "particle-wall contacts")], "contacts [count]")
 
     ax = axes[1, 0]
     ax.plot(t, 100 * c["max_overlap_per_radius"], color="C3", label="largest overlap")
@@ -57,12 +63,8 @@ def main(csv_path: str, png_path: str) -> None:
     ax.set_xlabel("simulated time [s]")
     ax.set_title("Overlap and bonds")
     if np.nanmax(c["bonds"]) > 0 or np.nanmax(np.nan_to_num(c["bonds_broken"])) > 0:
-        twin = ax.twinx()
-        twin.plot(t, c["bonds"], color="C4", ls="--", label="intact bonds")
-        twin.plot(t, c["bonds_broken"], color="C5", ls=":", label="bonds broken in the stage")
-        twin.set_ylabel("bonds [count]")
-        lines = ax.get_lines() + twin.get_lines()
-        ax.legend(lines, [line.get_label() for line in lines], fontsize=8)
+        counts_beside(ax, t, [(c["bonds"], "C4", "--", "intact bonds"),
+                              (c["bonds_broken"], "C5", ":", "bonds broken in the stage")], "bonds [count]")
     else:
         ax.legend(fontsize=8)
 

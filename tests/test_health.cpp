@@ -10,6 +10,7 @@
 
 #include <cmath>
 
+#include "run/health_log.hpp"
 #include "sim/health.hpp"
 
 namespace dem {
@@ -90,6 +91,17 @@ TEST(Health, KineticEnergyIsHalfMVSquaredAndHalfIOmegaSquaredWithTheSameBitsOnAn
   EXPECT_EQ(one.kinetic_rotation, two.kinetic_rotation);
   EXPECT_EQ(one.pair_contacts, 0u);
   EXPECT_EQ(one.coordination, 0.0);
+}
+
+// The interval between rows: --health-every (steps) over the scene's health_every (seconds, at
+// least one step) over the default, a hundredth of the stage but never under 500 steps: both
+// sides of that floor, at step counts users run.
+TEST(Health, IntervalTakesTheCommandLineThenTheSceneThenAHundredthOfTheStageButAtLeast500Steps) {
+  EXPECT_EQ(health_interval(0, 0, 2.9, 3.7e-6), 7838) << "a long stage: 783,784 steps / 100";
+  EXPECT_EQ(health_interval(0, 0, 0.01, 1e-5), kMinDefaultHealthEvery) << "1,000 steps / 100 = 10, under the floor";
+  EXPECT_EQ(health_interval(0, 0.004, 0.01, 1e-5), 400) << "the scene's 0.004 s";
+  EXPECT_EQ(health_interval(0, 1e-9, 0.01, 1e-5), 1) << "at least one step";
+  EXPECT_EQ(health_interval(250, 0.004, 0.01, 1e-5), 250) << "the command line wins";
 }
 
 }  // namespace
