@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Command-line behaviour shared by the five tools: --help, --version, exit codes (README), clear
+# Command-line behaviour shared by the tools (the five and dem-render): --help, --version, exit codes (README), clear
 # errors for bad input, and no output file left behind when a run fails.
 set -u
 bin=$1 data=$2
