@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
-# Command-line behaviour shared by the five tools: --help, --version, exit codes (README), clear
+# Command-line behaviour shared by the tools (the five and dem-render): --help, --version, exit codes (README), clear
 # errors for bad input, and no output file left behind when a run fails.
 set -u
 bin=$1 data=$2
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 source "$(dirname "$0")/check_lib.sh"  # check NAME EXPECTED_CODE PATTERN -- command...
-for t in gen-primary copy-settle compact run-stage post-macro; do
-  check "$t --help" 0 "--scene\|--reference" -- "$bin/$t" --help
+for t in gen-primary copy-settle compact run-stage post-macro dem-render; do
+  check "$t --help" 0 "--scene\|--reference\|--color-by" -- "$bin/$t" --help
   check "$t --version" 0 "^$t (dem) 0\.1\.0 (commit [0-9A-Za-z._-]*)$" -- "$bin/$t" --version
   check "$t missing required option" 2 "is required" -- "$bin/$t"
 done

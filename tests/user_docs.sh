@@ -20,7 +20,7 @@ if [ -n "$hits" ]; then bad "docs cite SPEC or bare thesis equations:"; echo "$h
 
 # 2. The same for what the tools print: --help pages, and every string compiled into the tools and
 #    the libraries (error and warning messages, the units the scene parser quotes).
-tools=(gen-primary copy-settle compact run-stage post-macro)
+tools=(gen-primary copy-settle compact run-stage post-macro dem-render)
 for t in "${tools[@]}"; do
   exe="$build/tools/$t"
   [ -x "$exe" ] || { bad "$exe missing"; continue; }
