@@ -1,6 +1,6 @@
 #pragma once
 // The force of a prescribed, steady fluid flow on each particle (docs/physics.md, "Fluid drag",
-// eq. P70-P76): the pressure field is given (a uniform gradient, or the radial flow to a well),
+// eq. P70-P75): the pressure field is given (a uniform gradient, or the radial flow to a well),
 // the fluid's velocity at a particle follows from the pressure gradient through the same drag law
 // at the particle's local void fraction (so that flow and drag are consistent: in a fixed bed the
 // grains carry exactly the pressure drop), and the force is
@@ -82,7 +82,7 @@ struct FluidParams {
   }
 
   // The fluid's force on a grain of radius a at x moving at v with local void fraction eps, under
-  // gravity g [N] (P76).
+  // gravity g [N] (P71).
   Vec3 force(double a, double eps, const Vec3& x, const Vec3& v, const Vec3& g) const {
     const double vol = 4.0 / 3.0 * std::numbers::pi * a * a * a, d = 2 * a;
     const Vec3 gp = pressure_gradient(x);
