@@ -516,5 +516,87 @@ std::vector<BadCase> velocity_bad_cases() {
 
 INSTANTIATE_TEST_SUITE_P(BadVelocity, SceneRejects, ::testing::ValuesIn(velocity_bad_cases()));
 
+// [stage.fluid]: a uniform flow and a well parse; each malformed key is rejected with its name,
+// value and what is allowed.
+const std::string kUniformFluid = R"(
+[stage.fluid]
+flow = "uniform"
+viscosity = 1.0e-3
+density = 998.0
+void_cutoff = 0.003
+void_every = 20
+pressure_gradient = [0.0, 0.0, -1.0e4]
+)";
+const std::string kWellFluid = R"(
+[stage.fluid]
+flow = "well"
+viscosity = 5.0e-3
+density = 850.0
+void_cutoff = 0.03
+well_centre = [0.5, 0.5, 0.0]
+well_axis = [0.0, 0.0, 2.0]
+well_radius = 0.09
+drainage_radius = 200.0
+drawdown = 15.0e6
+)";
+
+std::string with_fluid(const std::string& fluid, const std::string& from, const std::string& to) { return kValid + replace(fluid, from, to); }
+
+TEST(SceneParser, FluidParses) {
+  const Scene u = parse_scene(kValid + kUniformFluid, "scene.toml");
+  ASSERT_TRUE(u.stages[0].fluid);
+  const FluidParams& f = *u.stages[0].fluid;
+  EXPECT_EQ(f.flow, FluidParams::Flow::Uniform);
+  EXPECT_EQ(f.viscosity, 1.0e-3);
+  EXPECT_EQ(f.density, 998.0);
+  EXPECT_EQ(f.void_cutoff, 0.003);
+  EXPECT_EQ(f.void_every, 20);
+  EXPECT_EQ(f.gradient, Vec3(0, 0, -1e4));
+  const Scene w = parse_scene(kValid + kWellFluid, "scene.toml");
+  const FluidParams& g = *w.stages[0].fluid;
+  EXPECT_EQ(g.flow, FluidParams::Flow::Well);
+  EXPECT_EQ(g.well_axis, Vec3(0, 0, 1)) << "normalised";
+  EXPECT_EQ(g.void_every, 100) << "the default";
+  EXPECT_EQ(g.drainage_radius, 200.0);
+  EXPECT_EQ(g.drawdown, 15e6);
+  EXPECT_FALSE(parse_scene(kValid, "scene.toml").stages[0].fluid) << "no fluid unless asked";
+  const Scene typo = parse_scene(kValid + replace(kUniformFluid, "viscosity = 1.0e-3", "viscosity = 13.5e2"), "scene.toml");
+  ASSERT_EQ(typo.warnings.size(), 1u) << "a viscosity of 1350 Pa s is warned about";
+  EXPECT_NE(typo.warnings[0].find("stage[0].fluid.viscosity"), std::string::npos) << typo.warnings[0];
+}
+
+std::vector<BadCase> fluid_bad_cases() {
+  return {
+      {"fluid: array of tables", kValid + replace(kUniformFluid, "[stage.fluid]", "[[stage.fluid]]"), {"stage[0].fluid", "expected a table"}},
+      {"fluid: no flow", with_fluid(kUniformFluid, "flow = \"uniform\"\n", ""), {"stage[0].fluid.flow is missing"}},
+      {"fluid: unknown flow", with_fluid(kUniformFluid, "flow = \"uniform\"", "flow = \"darcy\""), {"stage[0].fluid.flow = \"darcy\"", "\"uniform\"", "\"well\""}},
+      {"fluid: zero viscosity", with_fluid(kUniformFluid, "viscosity = 1.0e-3", "viscosity = 0.0"), {"stage[0].fluid.viscosity = 0", "out of range", "(0, inf)", "Pa s"}},
+      {"fluid: no viscosity", with_fluid(kUniformFluid, "viscosity = 1.0e-3\n", ""), {"stage[0].fluid.viscosity is missing"}},
+      {"fluid: negative density", with_fluid(kUniformFluid, "density = 998.0", "density = -1.0"), {"stage[0].fluid.density = -1", "kg/m^3"}},
+      {"fluid: no void_cutoff", with_fluid(kUniformFluid, "void_cutoff = 0.003\n", ""), {"stage[0].fluid.void_cutoff is missing"}},
+      {"fluid: zero void_cutoff", with_fluid(kUniformFluid, "void_cutoff = 0.003", "void_cutoff = 0.0"), {"stage[0].fluid.void_cutoff = 0", "(0, inf)"}},
+      {"fluid: void_every zero", with_fluid(kUniformFluid, "void_every = 20", "void_every = 0"), {"stage[0].fluid.void_every = 0", "[1, 1000000000]"}},
+      {"fluid: void_every fractional", with_fluid(kUniformFluid, "void_every = 20", "void_every = 2.5"), {"stage[0].fluid.void_every", "integer"}},
+      {"fluid: uniform without gradient", with_fluid(kUniformFluid, "pressure_gradient = [0.0, 0.0, -1.0e4]\n", ""),
+       {"stage[0].fluid.pressure_gradient is missing"}},
+      {"fluid: gradient of two numbers", with_fluid(kUniformFluid, "[0.0, 0.0, -1.0e4]", "[0.0, -1.0e4]"), {"stage[0].fluid.pressure_gradient", "array of 3 numbers"}},
+      {"fluid: uniform with a well key", with_fluid(kUniformFluid, "void_every = 20", "void_every = 20\nwell_radius = 0.09"),
+       {"stage[0].fluid.well_radius", "belongs to flow = \"well\""}},
+      {"fluid: well with a gradient", with_fluid(kWellFluid, "drawdown = 15.0e6", "drawdown = 15.0e6\npressure_gradient = [0.0, 0.0, 1.0]"),
+       {"stage[0].fluid.pressure_gradient", "belongs to flow = \"uniform\""}},
+      {"fluid: well without centre", with_fluid(kWellFluid, "well_centre = [0.5, 0.5, 0.0]\n", ""), {"stage[0].fluid.well_centre is missing"}},
+      {"fluid: zero well axis", with_fluid(kWellFluid, "well_axis = [0.0, 0.0, 2.0]", "well_axis = [0.0, 0.0, 0.0]"), {"stage[0].fluid.well_axis", "non-zero vector"}},
+      {"fluid: zero well radius", with_fluid(kWellFluid, "well_radius = 0.09", "well_radius = 0.0"), {"stage[0].fluid.well_radius = 0", "(0, inf)"}},
+      {"fluid: drainage inside the well", with_fluid(kWellFluid, "drainage_radius = 200.0", "drainage_radius = 0.05"),
+       {"stage[0].fluid.drainage_radius = 0.05", "must exceed well_radius (0.09 m)"}},
+      {"fluid: no drawdown", with_fluid(kWellFluid, "drawdown = 15.0e6\n", ""), {"stage[0].fluid.drawdown is missing"}},
+      {"fluid: drawdown not a number", with_fluid(kWellFluid, "drawdown = 15.0e6", "drawdown = \"15 MPa\""), {"stage[0].fluid.drawdown", "expected a number"}},
+      {"fluid: unknown key", with_fluid(kUniformFluid, "void_every = 20", "void_every = 20\npermeability = 1.8e-10"),
+       {"stage[0].fluid.permeability", "unknown key", "allowed here"}},
+  };
+}
+
+INSTANTIATE_TEST_SUITE_P(BadFluid, SceneRejects, ::testing::ValuesIn(fluid_bad_cases()));
+
 }  // namespace
 }  // namespace dem

@@ -2,17 +2,24 @@
 // Body forces: loads that act on each particle alone, from its own state and the scene's fields.
 // The force loop adds them to a particle's net load after its contacts (forces/force_loop.hpp
 // ForceBlocks), in the order of the members below, so that the order of every sum is fixed.
-// Gravity is the first; a new body force (fluid drag, say) is a member here and one more term in
-// add_to, after those already there (docs/architecture.md).
+// Gravity is the first, the fluid's force (forces/fluid.hpp) the second (docs/architecture.md).
 #include "core/types.hpp"
+#include "forces/fluid.hpp"
+#include "state/particles.hpp"
 
 namespace dem {
 
 struct BodyForces {
   Vec3 gravity = Vec3::Zero();  // [m/s^2] (SimParams::gravity)
+  // The stage's fluid, or none (a run without one pays a test per block of particles).
+  const FluidParams* fluid = nullptr;
 
   // Adds the body forces on a particle of mass m to its force [N].
   void add_to(double mass, Vec3& force) const { force += mass * gravity; }
+  // Adds the fluid's force on particle slot i (Particles::void_fraction filled) [N].
+  void add_fluid(const Particles& p, long i, Vec3& force) const {
+    force += fluid->force(p.radius[i], p.void_fraction[i], p.x[i], p.v[i], gravity);
+  }
 };
 
 }  // namespace dem

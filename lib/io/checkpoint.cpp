@@ -654,6 +654,9 @@ void write_all(Writer& w, const Simulation& sim, const CheckpointMeta& meta) {
   ParticleArrays particle;
   for (const Vec3i& i : p.image) particle.image.insert(particle.image.end(), {i[0], i[1], i[2]});
   particle_datasets(io, p, particle);
+  // A fluid stage's void fractions (schema 4 on, only while a stage has a fluid): they change at
+  // the steps of their updates only, so a resumed run needs them.
+  if (!p.void_fraction.empty()) io.doubles("/particles/void_fraction", p.void_fraction, "1");
 
   const MaterialArrays materials = material_arrays(sim.materials);
   material_datasets(io, materials);
@@ -732,6 +735,12 @@ void read_checkpoint(const std::string& path, Simulation& sim, CheckpointMeta& m
   p.image.assign(n, Vec3i::Zero());
   for (std::size_t k = 0; k < particle.image.size() / 3; ++k) p.image[k] = Vec3i(particle.image[3 * k], particle.image[3 * k + 1], particle.image[3 * k + 2]);
   if (p.fixed.empty()) p.fixed.assign(n, 0);
+  p.void_fraction.clear();
+  if (r.has("/particles/void_fraction")) {
+    p.void_fraction = r.doubles("/particles/void_fraction", n);
+    for (double e : p.void_fraction)
+      if (!(e <= 1)) throw IoError(path + ": /particles/void_fraction holds a value above 1 or not a number (damaged file)");
+  }
   for (std::uint8_t f : p.fixed)
     if (f > kPrescribed) throw IoError(path + ": /particles/fixed holds a value other than 0, 1 or 2 (damaged file)");
 

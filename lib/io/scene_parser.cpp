@@ -1202,6 +1202,40 @@ VelocitySpec read_velocity_entry(TableReader& r, const Scene& sc) {
   return v;
 }
 
+// [stage.fluid]: the fluid's properties, its pressure field and the void-fraction kernel
+// (forces/fluid.hpp; docs/scene.md). Keys of the other flow are refused by name.
+FluidParams read_fluid(TableReader& r) {
+  FluidParams f;
+  const std::string flow = r.choice("flow", {"uniform", "well"});
+  f.viscosity = r.number("viscosity", 0, kInf, "Pa s", true);
+  if (f.viscosity > 100 || f.viscosity < 1e-6)
+    r.warn("viscosity", num(f.viscosity) + " Pa s is no liquid's or gas's (water 1.0e-3, light oil about 5e-3 Pa s): check the unit");
+  f.density = r.number("density", 0, kInf, "kg/m^3", true);
+  f.void_cutoff = r.number("void_cutoff", 0, kInf, "m (the void-fraction kernel's support radius; about 3 mean diameters)", true);
+  f.void_every = r.integer_or("void_every", f.void_every, 1, 1000000000);
+  const char* uniform_keys[] = {"pressure_gradient"};
+  const char* well_keys[] = {"well_centre", "well_axis", "well_radius", "drainage_radius", "drawdown"};
+  if (flow == "uniform") {
+    f.flow = FluidParams::Flow::Uniform;
+    for (const char* k : well_keys)
+      if (r.has(k)) r.fail(k, "belongs to flow = \"well\" (this fluid's flow is \"uniform\": give pressure_gradient only)");
+    f.gradient = r.vec3("pressure_gradient");
+    if (!f.gradient.allFinite()) r.fail("pressure_gradient", "must be finite (Pa/m)");
+  } else {
+    f.flow = FluidParams::Flow::Well;
+    for (const char* k : uniform_keys)
+      if (r.has(k)) r.fail(k, "belongs to flow = \"uniform\" (this fluid's flow is \"well\")");
+    f.well_centre = r.vec3("well_centre");
+    f.well_axis = direction_or(r, "well_axis", f.well_axis).normalized();
+    f.well_radius = r.number("well_radius", 0, kInf, "m", true);
+    f.drainage_radius = r.number("drainage_radius", 0, kInf, "m", true);
+    if (!(f.drainage_radius > f.well_radius))
+      r.fail("drainage_radius", "must exceed well_radius (" + num(f.well_radius) + " m): the pressure is fixed at both radii");
+    f.drawdown = r.number("drawdown", -kInf, kInf, "Pa (reservoir minus well pressure; > 0: flow into the well)", true, true);
+  }
+  return f;
+}
+
 void read_stages(TableReader& top, Scene& sc) {
   const auto list = top.tables("stage");
   for (std::size_t k = 0; k < list.size(); ++k) {
@@ -1289,6 +1323,11 @@ void read_stages(TableReader& top, Scene& sc) {
         (std::string(key) == "prescribe" ? s.prescribes : s.set_velocities).push_back(read_velocity_entry(vr, sc));
         vr.finish();
       }
+    }
+    if (const toml::table* t = r.subtable("fluid")) {
+      TableReader fr(*t, top.file(), r.name("fluid"));
+      s.fluid = read_fluid(fr);
+      fr.finish();
     }
     r.finish();
     sc.stages.push_back(std::move(s));

@@ -191,6 +191,7 @@ void run_stage(const StageOptions& o) {
   } else {
     if (o.restart && !o.quiet) std::cerr << "run-stage: no periodic checkpoint " << restart_file << ", starting from " << o.in << "\n";
     read_checkpoint(o.in, sim, meta);
+    sim.particles.void_fraction.clear();  // an earlier stage's: this one computes its own at its first step
     adopt_scene(sim, scene);
     apply_actions(sim, *stage);
     start_velocities(sim, scene, *stage);
@@ -203,6 +204,10 @@ void run_stage(const StageOptions& o) {
   }
   // A stage's own gravity (a resumed run's checkpoint holds it already; set again all the same).
   if (stage->gravity) sim.params.gravity = *stage->gravity;
+  // The stage's fluid, or none; its void fractions are the checkpoint's when resumed, computed
+  // afresh at a stage start.
+  sim.params.fluid = stage->fluid ? *stage->fluid : FluidParams{};
+  if (!sim.params.fluid.on()) sim.particles.void_fraction.clear();
   const StartChecks checks(sim);
   checks.print("run-stage");
   meta.writer = "run-stage";

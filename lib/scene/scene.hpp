@@ -8,6 +8,7 @@
 
 #include "contact/normal_laws.hpp"
 #include "core/types.hpp"
+#include "forces/fluid.hpp"
 #include "scene/region.hpp"
 #include "state/materials.hpp"
 #include "state/periodic.hpp"
@@ -178,6 +179,7 @@ struct StageSpec {
   std::vector<InsertSpec> inserts;  // particles poured in during the stage
   std::vector<VelocitySpec> set_velocities;  // applied in order at the start, after the actions
   std::vector<VelocitySpec> prescribes;      // groups moved at a set velocity for the whole stage
+  std::optional<FluidParams> fluid;          // [stage.fluid]: the fluid's force during the stage
 };
 
 struct Scene {

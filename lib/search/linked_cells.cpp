@@ -126,7 +126,7 @@ void LinkedCells::bin(const Particles& p, const PeriodicBox& box, double margin)
 }
 
 void LinkedCells::find_near_pairs(const Particles& p, const PeriodicBox& box, std::vector<FoundContact>& out, std::vector<int>& group_start,
-                                  double margin) {
+                                  double margin, bool fixed_pairs) {
   bin(p, box, margin);
   const long* dims = dims_;
   const long ncell = dims[0] * dims[1] * dims[2];
@@ -149,8 +149,8 @@ void LinkedCells::find_near_pairs(const Particles& p, const PeriodicBox& box, st
   {
     std::vector<FoundContact>& mine = parts_[omp_get_thread_num()].found;
     mine.clear();
-    auto test = [&, x, radius, fixed, id](int a, int b) {
-      if (both_fixed(fixed[a], fixed[b])) return;
+    auto test = [&, x, radius, fixed, id, fixed_pairs](int a, int b) {
+      if (!fixed_pairs && both_fixed(fixed[a], fixed[b])) return;
       const double r = radius[a] + radius[b];
       const double d2 = (periodic ? box.nearest(x[a] - x[b]) : Vec3(x[a] - x[b])).squaredNorm();
       if (d2 < (r + margin) * (r + margin)) {

@@ -29,8 +29,9 @@ class LinkedCells {
   // group of slot s starts. A margin lets bonded pairs be found while apart (in tension).
   // Distances are to the nearest image where `box` is periodic; throws InputError when a period is
   // shorter than three cells (2 Rmax + margin each), which the nearest-image search needs.
+  // Pairs of two held particles (both_fixed) are left out unless `fixed_pairs`.
   void find_near_pairs(const Particles& p, const PeriodicBox& box, std::vector<FoundContact>& out, std::vector<int>& group_start,
-                       double margin = 0);
+                       double margin = 0, bool fixed_pairs = false);
   void find_near_pairs(const Particles& p, const PeriodicBox& box, std::vector<FoundContact>& out, double margin = 0) {
     std::vector<int> group_start;
     find_near_pairs(p, box, out, group_start, margin);

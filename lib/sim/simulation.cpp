@@ -26,7 +26,8 @@ void Simulation::advance() {
     sort_storage();
   compute_forces();
   const bool any_fixed = particles.any_fixed();
-  if (params.max_energy_gain > 0) audit_energy(any_fixed && particles.any_prescribed());
+  // The fluid does work the energy balance does not hold (docs/physics.md, "Fluid drag"): no audit then.
+  if (params.max_energy_gain > 0 && !params.fluid.on()) audit_energy(any_fixed && particles.any_prescribed());
   integrate(any_fixed);
   time += dt;
   ++step;
@@ -41,7 +42,10 @@ void Simulation::compute_forces() {
   if (indexed_block_ != params.load_block) index_contacts_per_particle();
   block_force_.resize(particles.size());
   block_torque_.resize(particles.size());
-  const BodyForces body{params.gravity};
+  const bool fluid = params.fluid.on();
+  if (fluid && (particles.void_fraction.size() != particles.size() || step % params.fluid.void_every == 0))
+    void_fractions(particles, periodic, params.fluid.void_cutoff, void_scratch_, particles.void_fraction);
+  const BodyForces body{params.gravity, fluid ? &params.fluid : nullptr};
   ForceBlocks loads{params.load_block, block_first_, block_needs_, needed_from_, by_key_start_, by_key_, force_times_,
                     block_done_,       ++force_epoch_, body,       simd_loops_on(), block_force_, block_torque_};
   const double worst_overlap = compute_contact_forces(in, choose_force_variant(materials, has_bonds()), pairs_, walls_, loads);

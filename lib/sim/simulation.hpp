@@ -5,6 +5,8 @@
 #include <vector>
 
 #include "contact/contact_list.hpp"
+#include "forces/fluid.hpp"
+#include "forces/void_fraction.hpp"
 #include "core/block_times.hpp"
 #include "sim/energy_audit.hpp"
 #include "state/load_sum.hpp"
@@ -43,6 +45,11 @@ struct SimParams {
   // run whose outputs compute the forces on a copy (contact_forces_at_state) or read only keys,
   // springs and bonds (checkpoints) saves the stores. Never changes a result.
   bool keep_pair_results = true;
+  // The stage's fluid (forces/fluid.hpp; docs/physics.md "Fluid drag"): none by default. While on,
+  // each particle's void fraction is computed at steps that are multiples of fluid.void_every
+  // (and whenever the particles change in number) and kept in Particles::void_fraction, which
+  // the checkpoint holds.
+  FluidParams fluid;
 };
 
 // What the particles exert on one wall element this step.
@@ -179,6 +186,7 @@ class Simulation {
   std::vector<LoadSum> block_force_, block_torque_;  // per slot, its net load this step (ForceBlocks)
   std::vector<int> wall_runs_;  // first wall candidate of each particle, then the end
   std::vector<int> wall_run_order_, wall_block_first_;  // ForceLoopInput's
+  VoidFractionScratch void_scratch_;  // working storage of the fluid's void fractions
 };
 
 }  // namespace dem

@@ -38,6 +38,7 @@ void Particles::reorder(const std::vector<std::size_t>& order) {
   gather(mass, order);
   gather(material, order);
   gather(fixed, order);
+  if (void_fraction.size() == order.size()) gather(void_fraction, order);
 }
 
 void Particles::keep_only(const std::vector<bool>& keep) {
@@ -51,6 +52,7 @@ void Particles::keep_only(const std::vector<bool>& keep) {
   compact(mass, keep);
   compact(material, keep);
   compact(fixed, keep);
+  if (void_fraction.size() == keep.size()) compact(void_fraction, keep);
 }
 
 Index Particles::max_id() const { return id.empty() ? -1 : *std::max_element(id.begin(), id.end()); }

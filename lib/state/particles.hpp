@@ -40,6 +40,10 @@ struct Particles {
   // interact. kPrescribed (2): moves at its own v and w for the stage ([[stage.prescribe]]), also
   // infinitely heavy in its contacts. kFree (0): moves under its load.
   std::vector<std::uint8_t> fixed;
+  // The local void fraction around each particle (forces/void_fraction.hpp), while a stage has a
+  // fluid; empty otherwise, and refilled whole when its size differs from the particles' (add()
+  // leaves it alone).
+  std::vector<double> void_fraction;
 
   std::size_t size() const { return id.size(); }
 

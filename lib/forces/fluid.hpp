@@ -1,0 +1,96 @@
+#pragma once
+// The force of a prescribed, steady fluid flow on each particle (docs/physics.md, "Fluid drag",
+// eq. P70-P75): the pressure field is given (a uniform gradient, or the radial flow to a well),
+// the fluid's velocity at a particle follows from the pressure gradient through the same drag law
+// at the particle's local void fraction (so that flow and drag are consistent: in a fixed bed the
+// grains carry exactly the pressure drop), and the force is
+//   F = V_p beta / (1 - eps) (u - v) - V_p grad p - rho_f V_p g
+// with beta from Ergun below eps = 0.8 and from Wen & Yu at and above it.
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "core/types.hpp"
+
+namespace dem {
+
+inline constexpr double kErgunWenYuSwitch = 0.8;  // Ergun below, Wen & Yu at and above (P72)
+// A grain nearly alone is no porous medium: the flow's speed (P74) is solved at no more than this
+// void fraction (the drag itself uses the grain's own).
+inline constexpr double kFlowVoidMax = 0.95;
+
+// Schiller & Naumann's drag coefficient of a sphere at particle Reynolds number re (P73).
+inline double schiller_naumann_cd(double re) { return re < 1000 ? 24 / re * (1 + 0.15 * std::pow(re, 0.687)) : 0.44; }
+
+// beta / (1 - eps) [kg/(m^3 s)]: the drag per unit particle volume and unit slip velocity
+// (P71, P72), for void fraction eps, grain diameter d, slip speed w = |u - v| (u interstitial),
+// fluid viscosity mu and density rho. Finite as eps -> 1 (a lone sphere: Schiller & Naumann).
+inline double drag_per_volume(double eps, double d, double w, double mu, double rho) {
+  if (eps < kErgunWenYuSwitch) return 150 * (1 - eps) / eps * mu / (d * d) + 1.75 * rho * w / d;  // Ergun
+  const double re = eps * rho * d * w / mu;
+  if (re <= 0) return 18 * mu / (d * d) * std::pow(eps, -2.65);  // Stokes limit of Wen & Yu
+  return 0.75 * schiller_naumann_cd(re) * eps * rho * w / d * std::pow(eps, -2.65);  // Wen & Yu
+}
+
+// The interstitial speed w at which a fixed bed of void fraction eps carries the pressure gradient
+// g = |grad p| (P74): per unit bed volume the fluid's drag on the grains balances its share of the
+// pressure gradient, beta(w) w = eps g, i.e. drag_per_volume(w) w = eps g / (1 - eps). Ergun: a quadratic, solved in closed form; Wen & Yu:
+// bisection on the monotone drag (60 halvings: to the last bit of the bracket).
+inline double interstitial_speed(double eps, double d, double g, double mu, double rho) {
+  if (g <= 0) return 0;
+  eps = std::min(eps, kFlowVoidMax);
+  const double need = eps * g / (1 - eps);  // drag_per_volume(w) w
+  if (eps < kErgunWenYuSwitch) {
+    const double a = 1.75 * rho / d, b = 150 * (1 - eps) / eps * mu / (d * d);
+    return 2 * need / (b + std::sqrt(b * b + 4 * a * need));  // a w^2 + b w = need, without cancellation
+  }
+  double lo = 0, hi = need / (18 * mu / (d * d) * std::pow(eps, -2.65));  // the Stokes speed: drag only adds to Stokes
+  while (drag_per_volume(eps, d, hi, mu, rho) * hi < need) hi *= 2;
+  for (int k = 0; k < 60; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (drag_per_volume(eps, d, mid, mu, rho) * mid < need ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+// The fluid of a stage ([stage.fluid], docs/scene.md): its properties, the pressure field and the
+// void-fraction estimator's settings.
+struct FluidParams {
+  enum class Flow { None, Uniform, Well };
+  Flow flow = Flow::None;  // None: no fluid (no force, no cost)
+  double viscosity = 0;    // mu [Pa s]
+  double density = 0;      // rho_f [kg/m^3]
+  Vec3 gradient = Vec3::Zero();  // Uniform: grad p [Pa/m]
+  // Well (P75): the well's axis (a point and a unit direction), its radius r_w, the drainage radius
+  // r_e and the drawdown p_e - p_w [Pa] (> 0: flow towards the well).
+  Vec3 well_centre = Vec3::Zero(), well_axis = Vec3(0, 0, 1);
+  double well_radius = 0, drainage_radius = 0, drawdown = 0;
+  double void_cutoff = 0;       // the void-fraction kernel's support radius c [m] (P70)
+  long void_every = 100;        // steps between void-fraction updates (at multiples of it)
+
+  bool on() const { return flow != Flow::None; }
+
+  // grad p at x [Pa/m] (P75): zero inside the well (open hole, at the well pressure).
+  Vec3 pressure_gradient(const Vec3& x) const {
+    if (flow == Flow::Uniform) return gradient;
+    if (flow != Flow::Well) return Vec3::Zero();
+    Vec3 r = x - well_centre;
+    r -= r.dot(well_axis) * well_axis;
+    const double r2 = r.squaredNorm();
+    if (r2 < well_radius * well_radius) return Vec3::Zero();
+    return drawdown / std::log(drainage_radius / well_radius) / r2 * r;  // dp/dr r_hat, dp/dr = dp / (ln(re/rw) r)
+  }
+
+  // The fluid's force on a grain of radius a at x moving at v with local void fraction eps, under
+  // gravity g [N] (P71).
+  Vec3 force(double a, double eps, const Vec3& x, const Vec3& v, const Vec3& g) const {
+    const double vol = 4.0 / 3.0 * std::numbers::pi * a * a * a, d = 2 * a;
+    const Vec3 gp = pressure_gradient(x);
+    const double gn = gp.norm();
+    const Vec3 u = gn > 0 ? Vec3(-interstitial_speed(eps, d, gn, viscosity, density) / gn * gp) : Vec3(Vec3::Zero());
+    const Vec3 slip = u - v;
+    return vol * drag_per_volume(eps, d, slip.norm(), viscosity, density) * slip - vol * gp - density * vol * g;
+  }
+};
+
+}  // namespace dem
