@@ -27,7 +27,9 @@ void Simulation::advance() {
   compute_forces();
   const bool any_fixed = particles.any_fixed();
   if (params.max_energy_gain > 0) audit_energy(any_fixed && particles.any_prescribed());
+  if (ledger.on) keep_state_before_motion();
   integrate(any_fixed);
+  if (ledger.on) account_energy(any_fixed);
   time += dt;
   ++step;
   if (has_bonds_) count_bonds();  // bonds only ever break: stop paying once all are gone
@@ -35,6 +37,7 @@ void Simulation::advance() {
 
 void Simulation::compute_forces() {
   find_contacts();
+  if (ledger.on && has_bonds_) ledger_pair_bonded_ = pairs_.bonded, ledger_wall_bonded_ = walls_.bonded;
   const bool any_fixed = particles.any_fixed();
   const ForceLoopInput in{particles, materials, walls, wall_geometry_, wall_runs_, wall_run_order_, wall_block_first_, periodic,
                           any_fixed, has_bonds_, dt, params.keep_pair_results};
