@@ -26,6 +26,7 @@ inline Closed linear_closed_form(double kn, double m_eff, double eta, double v) 
 
 struct Result {
   double restitution = 0, duration = 0, peak_overlap = 0;
+  EnergyLedger ledger;  // at the release, where Shot::ledger
 };
 
 struct Shot {
@@ -38,6 +39,7 @@ struct Shot {
   double v = 0.5;             // approach speed [m/s]
   double kn = 1e5;            // cundall [N/m]
   double young = 1e7, poisson = 0.25;  // hertz
+  bool ledger = false;        // keep the energy ledger (sim/energy_ledger.hpp)
 };
 
 constexpr double kA = 1e-3, kB = 1.5e-3, kDensityA = 2500, kDensityB = 7800;
@@ -69,6 +71,7 @@ inline Result collide(const Shot& s) {
   sim.materials = MaterialTable({material(s, kDensityA), material(s, kDensityB)}, {});
   sim.params.gravity = Vec3::Zero();
   sim.dt = s.t_ref / s.steps;
+  sim.ledger.on = s.ledger;
   const double v = s.v;
   const double gap = (3 + s.phase) * v * sim.dt;  // the first touch at this fraction of the fourth step
   const double ma = mass(kA, kDensityA), mb = mass(kB, kDensityB);
@@ -101,6 +104,7 @@ inline Result collide(const Shot& s) {
     before = now;
   }
   r.restitution = -approach() / v;
+  r.ledger = sim.ledger;
   return r;
 }
 

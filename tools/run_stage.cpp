@@ -30,16 +30,21 @@ int main(int argc, char** argv) {
   app.add_option("--track-every", o.track_every, "steps between rows of --track (default 100)")
       ->check(CLI::PositiveNumber)
       ->needs(track);
+  const CLI::Validator whole_steps(
+      [](std::string& v) {
+        return v.find_first_not_of("0123456789") == std::string::npos && v.find_first_not_of('0') != std::string::npos
+                   ? std::string()
+                   : "a whole number of steps, 1 or more, is allowed; got " + v;
+      },
+      "STEPS >= 1");
   app.add_option("--health-every", o.health_every,
                  "steps between rows of the health log OUT with .health.csv (default: the stage's health_every in seconds, else a "
                  "hundredth of the stage, at least 500 steps)")
-      ->check(CLI::Validator(
-          [](std::string& v) {
-            return v.find_first_not_of("0123456789") == std::string::npos && v.find_first_not_of('0') != std::string::npos
-                       ? std::string()
-                       : "a whole number of steps, 1 or more, is allowed; got " + v;
-          },
-          "STEPS >= 1"));
+      ->check(whole_steps);
+  app.add_option("--energy-every", o.energy_every,
+                 "steps between rows of the energy log OUT with .energy.csv (default: the stage's energy_every in seconds; without "
+                 "either, no energy log)")
+      ->check(whole_steps);
   app.add_flag("--quiet", o.quiet, "no progress output");
   dem::add_common_options(app, threads);
   o.command = dem::shell_command(argc, argv);

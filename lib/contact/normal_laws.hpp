@@ -62,6 +62,8 @@ struct CundallNormal {
     return lanes::only_where(lanes::less(L(0.0), u), p.kn * u);
   }
   static double stored_energy(const PairParams& p, double u, double /*r_eff*/, bool /*bonded*/) { return linear_compression_energy(p, u); }
+  // The elastic energy held exactly (the energy balance, docs/physics.md eq. P31): the same.
+  static double elastic_energy(const PairParams& p, double u, double r_eff, bool bonded) { return stored_energy(p, u, r_eff, bonded); }
   static double stiffness(const PairParams& p, const ContactScale& /*scale*/) { return p.kn; }
   static constexpr PropertyKey keys[] = {kNormalStiffnessKey};
   static void derive(PairParams& p, const PairProperties& pair) {
@@ -90,6 +92,10 @@ struct LiuNormal {
   // A bonded pair held in tension s stores at most F s (the attraction never exceeds F).
   static double stored_energy(const PairParams& p, double u, double /*r_eff*/, bool bonded) {
     return u >= 0 ? linear_compression_energy(p, u) : bonded ? p.tensile_strength * -u : 0.0;
+  }
+  // Exactly: ½ kn u² on both sides while bonded (docs/physics.md eq. P31).
+  static double elastic_energy(const PairParams& p, double u, double /*r_eff*/, bool bonded) {
+    return u >= 0 || bonded ? 0.5 * p.kn * u * u : 0.0;
   }
   static double stiffness(const PairParams& p, const ContactScale& /*scale*/) { return p.kn; }
   static constexpr PropertyKey keys[] = {kNormalStiffnessKey, kTensileStrengthKey};
@@ -126,6 +132,13 @@ struct MendesNormal {
     return -p.kn * (p.mendes_D * (1 - std::exp(-p.mendes_A * s)) - s);
   }
   static double stored_energy(const PairParams& p, double u, double r_eff, bool bonded) { return LiuNormal::stored_energy(p, u, r_eff, bonded); }
+  // Exactly (docs/physics.md eq. P31): in tension s < s0 the work of T, kn [D (s - (1 - exp(-A s))/A) - s²/2].
+  static double elastic_energy(const PairParams& p, double u, double /*r_eff*/, bool bonded) {
+    if (u >= 0) return 0.5 * p.kn * u * u;
+    if (!bonded || !p.mendes_tension) return 0.0;
+    const double s = std::min(-u, p.break_separation);
+    return p.kn * (p.mendes_D * (s - (1 - std::exp(-p.mendes_A * s)) / p.mendes_A) - 0.5 * s * s);
+  }
   // The attraction starts with slope T'(0) = kn (D A - 1) = kn (L - 1), steeper than kn for
   // eps < 1/e^2 (8.2 kn at eps = 1e-4): eq. 2.48 must see it.
   static double stiffness(const PairParams& p, const ContactScale& /*scale*/) {
@@ -152,6 +165,7 @@ struct HertzNormal {
   static double stored_energy(const PairParams& p, double u, double r_eff, bool /*bonded*/) {
     return u > 0 ? 0.4 * p.hertz_modulus * std::sqrt(r_eff * u) * u * u : 0.0;
   }
+  static double elastic_energy(const PairParams& p, double u, double r_eff, bool bonded) { return stored_energy(p, u, r_eff, bonded); }
   // The slope df/du = 2 E* sqrt(R* u) grows with the overlap: bounded at the largest effective
   // radius and overlap a run reaches before its overlap check stops it.
   static double stiffness(const PairParams& p, const ContactScale& scale) {

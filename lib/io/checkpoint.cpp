@@ -461,6 +461,7 @@ void run_datasets(Io& io, Run& run) {
     io.text("/run/input_seal", run.input_seal);
   }
   if (io.has("/run/stage_start_bonds")) io.scalar("/run/stage_start_bonds", run.stage_start_bonds);  // added within schema 4
+  if (io.has("/run/energy")) io.doubles("/run/energy", run.energy, "J");  // added within schema 4: the energy log's sums
 }
 
 template <class Io, class P, class A>

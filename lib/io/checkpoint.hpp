@@ -29,6 +29,7 @@ struct RunInfo {
   std::vector<std::int64_t> insert_count;     // per [[stage.insert]]: particles inserted so far
   std::vector<std::int64_t> insert_deferred;  // per [[stage.insert]]: particle-events that found no room
   std::int64_t stage_start_bonds = -1;        // intact bonds when the stage began (health log); -1 = unknown
+  std::vector<double> energy;  // the energy log's ledger (EnergyLedger::values) [J]; empty: no energy log
 };
 
 struct CheckpointMeta {

@@ -54,4 +54,11 @@ void check_output_dir(const std::string& path, const std::string& option) {
   check_folder(fs::path(path), option, path);
 }
 
+std::string beside_output(const std::string& out, const std::string& suffix) {
+  const std::string ext = ".h5";
+  if (out.size() > ext.size() && out.compare(out.size() - ext.size(), ext.size(), ext) == 0)
+    return out.substr(0, out.size() - ext.size()) + suffix;
+  return out + suffix;
+}
+
 }  // namespace dem

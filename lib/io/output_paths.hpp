@@ -14,4 +14,8 @@ void check_output_file(const std::string& path, const std::string& option);
 // creatable.
 void check_output_dir(const std::string& path, const std::string& option);
 
+// A file that belongs to an output checkpoint: `out` without ".h5" followed by `suffix`
+// ("x.h5", ".health.csv" -> "x.health.csv"; a path without .h5 keeps it whole).
+std::string beside_output(const std::string& out, const std::string& suffix);
+
 }  // namespace dem

@@ -1251,6 +1251,7 @@ void read_stages(TableReader& top, Scene& sc) {
       check_gravity(r, *s.gravity);
     }
     s.health_every = r.number_or("health_every", 0.0, 0, kInf, "s (0 or absent = a hundredth of the stage, at least 500 steps)");
+    s.energy_every = r.number_or("energy_every", 0.0, 0, kInf, "s (absent = no energy log)", true);
     const auto actions = r.tables("action");
     for (std::size_t a = 0; a < actions.size(); ++a) {
       TableReader ar(*actions[a], top.file(), r.name(indexed("action", a)));

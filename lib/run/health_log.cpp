@@ -6,14 +6,11 @@
 #include <cmath>
 #include <cstdio>
 
+#include "io/output_paths.hpp"
+
 namespace dem {
 
-std::string health_path(const std::string& out) {
-  const std::string ext = ".h5";
-  if (out.size() > ext.size() && out.compare(out.size() - ext.size(), ext.size(), ext) == 0)
-    return out.substr(0, out.size() - ext.size()) + ".health.csv";
-  return out + ".health.csv";
-}
+std::string health_path(const std::string& out) { return beside_output(out, ".health.csv"); }
 
 std::int64_t health_interval(std::int64_t cli_steps, double scene_seconds, double stage_duration, double dt) {
   if (cli_steps > 0) return cli_steps;

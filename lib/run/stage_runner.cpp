@@ -17,6 +17,7 @@
 #include "io/output_paths.hpp"
 #include "io/scene_parser.hpp"
 #include "io/vtk_output.hpp"
+#include "run/energy_log.hpp"
 #include "run/frames.hpp"
 #include "run/health_log.hpp"
 #include "run/interrupt.hpp"
@@ -29,12 +30,7 @@
 
 namespace dem {
 
-std::string restart_path(const std::string& out) {
-  const std::string ext = ".h5";
-  if (out.size() > ext.size() && out.compare(out.size() - ext.size(), ext.size(), ext) == 0)
-    return out.substr(0, out.size() - ext.size()) + ".restart.h5";
-  return out + ".restart.h5";
-}
+std::string restart_path(const std::string& out) { return beside_output(out, ".restart.h5"); }
 
 namespace {
 
@@ -179,6 +175,8 @@ void run_stage(const StageOptions& o) {
   check_output_file(o.track, "--track");
   const std::string health_file = health_path(o.out);
   check_output_file(health_file, "--out (its health log)");
+  const std::string energy_file = energy_path(o.out);
+  if (o.energy_every > 0 || stage->energy_every > 0) check_output_file(energy_file, "--out (its energy log)");
   const std::string walls_fingerprint = scene.walls_fingerprint();
   Simulation sim;
   CheckpointMeta meta;
@@ -199,7 +197,7 @@ void run_stage(const StageOptions& o) {
     sim.dt = choose_time_step(with_inserted_sizes(sim, *stage), scene.simulation);
     start_motions(sim, *stage);
     meta.run = RunInfo{stage->name, sim.step, static_cast<std::int64_t>(std::ceil(stage->duration / sim.dt - 1e-9)), sim.time, {}, {},
-                       o.in, seal_fingerprint(o.in), {}, {}};
+                       o.in, seal_fingerprint(o.in), {}, {}, -1, {}};
     meta.run.stage_start_bonds = static_cast<std::int64_t>(intact_bonds(sim));
   }
   // A stage's own gravity (a resumed run's checkpoint holds it already; set again all the same).
@@ -247,11 +245,25 @@ void run_stage(const StageOptions& o) {
   WallLog wall_log(o.wall_forces, sim.walls, o.wall_forces_every, resume_step);
   const std::int64_t health_every = health_interval(o.health_every, stage->health_every, stage->duration, sim.dt);
   HealthLog health(health_file, sim.walls, health_every, run.stage_steps, resume_step, run.stage_start_bonds, o.quiet);
+  const std::int64_t energy_every = energy_interval(o.energy_every, stage->energy_every, sim.dt);
+  EnergyLog energy(energy_file, energy_every, resume_step);
+  sim.ledger = EnergyLedger{};
+  sim.ledger.on = energy.active();
+  if (sim.ledger.on && !run.energy.empty()) {  // resumed: the sums where the periodic checkpoint left them
+    try {
+      sim.ledger.from_values(run.energy);
+    } catch (const std::invalid_argument& e) {
+      throw IoError(restart_file + ": /run/energy " + e.what());
+    }
+    sim.ledger.on = true;
+  }
+  auto keep_energy = [&]() { run.energy = sim.ledger.on ? sim.ledger.values() : std::vector<double>{}; };
   if (!o.quiet)
     std::cerr << "run-stage: stage " << stage->name << ": time step " << sim.dt << " s (" << sim.dt / sim.critical_time_step()
               << " of the critical " << sim.critical_time_step() << " s of docs/physics.md eq. P5), " << run.stage_steps << " steps to t = "
               << run.stage_start_time + stage->duration << " s; health every " << health_every << " steps (" << health_every * sim.dt
-              << " s) in " << health_file << "\n";
+              << " s) in " << health_file << (energy.active() ? "; energy every " + std::to_string(energy_every) + " steps in " + energy_file : "")
+              << "\n";
   FrameWriter frames(o.vtk_dir, stage->name);
   if (resume_step < 0) frames.discard();  // a fresh start: staged frames of an earlier run are stale
   // Partial outputs (staged frames, .partial CSV files) are kept for a restart while a periodic
@@ -289,6 +301,7 @@ void run_stage(const StageOptions& o) {
     auto write_periodic = [&]() {
       keep_integrals();
       keep_insert_counts();
+      keep_energy();
       write_checkpoint(restart_file, sim, meta);
       have_checkpoint = true;
       checkpoint_step = sim.step;
@@ -308,6 +321,7 @@ void run_stage(const StageOptions& o) {
       wall_log.record(sim, done, sim.step == end);
       track.record(sim, done, sim.step == end);
       health.record(sim, done, sim.step == end);
+      energy.record(sim, done, sim.step == end);
       progress.update(done, sim.time);
       if (sim.step == end) break;
       const bool by_steps = o.checkpoint_every > 0 && done % o.checkpoint_every == 0;
@@ -355,10 +369,12 @@ void run_stage(const StageOptions& o) {
     wall_log.finish();
     track.finish();
     health.finish();
+    energy.finish();
     frames.commit(run.frame_times.size());
     if (!inserts.empty() && !o.quiet) std::cerr << "run-stage: " << insert_report(inserts, sim.time - run.stage_start_time) << "\n";
     keep_integrals();
     keep_insert_counts();
+    keep_energy();
     write_checkpoint(o.out, sim, meta);
     if (!o.quiet) {
       const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - loop_start).count();
@@ -377,6 +393,7 @@ void run_stage(const StageOptions& o) {
       wall_log.discard();
       track.discard();
       health.discard();
+      energy.discard();
     }
     throw;
   }

@@ -22,6 +22,7 @@ struct StageOptions {
   std::vector<std::int64_t> track_ids;   // their ids
   std::int64_t track_every = 100;        // steps between its rows
   std::int64_t health_every = 0;         // steps between health rows (OUT with .health.csv); 0 = the scene's
+  std::int64_t energy_every = 0;         // steps between energy rows (OUT with .energy.csv); 0 = the scene's (none without)
   bool quiet = false;
   std::string command;  // the command line as given, for the resume command printed on Ctrl-C
 };

@@ -172,6 +172,7 @@ struct StageSpec {
   double duration = 0;      // [s]
   double output_every = 0;  // VTK frame cadence [s]; 0 = first and last frame only
   std::optional<Vec3> gravity;  // this stage's gravity [m/s^2]; none: [simulation] gravity
+  double energy_every = 0;  // energy log cadence [s] (run/energy_log.hpp); 0 = none
   double health_every = 0;  // health log cadence [s] (run/health_log.hpp); 0 = a hundredth of the stage, at least 500 steps
   std::vector<ActionSpec> actions;  // applied in order at the start of the stage
   std::vector<MotionSpec> motions;  // wall motions during the stage (others stay fixed)

@@ -28,7 +28,9 @@ void Simulation::advance() {
   const bool any_fixed = particles.any_fixed();
   // The fluid does work the energy balance does not hold (docs/physics.md, "Fluid drag"): no audit then.
   if (params.max_energy_gain > 0 && !params.fluid.on()) audit_energy(any_fixed && particles.any_prescribed());
+  if (ledger.on) keep_state_before_motion();
   integrate(any_fixed);
+  if (ledger.on) account_energy(any_fixed);
   time += dt;
   ++step;
   if (has_bonds_) count_bonds();  // bonds only ever break: stop paying once all are gone
@@ -36,6 +38,7 @@ void Simulation::advance() {
 
 void Simulation::compute_forces() {
   find_contacts();
+  if (ledger.on && has_bonds_) ledger_pair_bonded_ = pairs_.bonded, ledger_wall_bonded_ = walls_.bonded;
   const bool any_fixed = particles.any_fixed();
   const ForceLoopInput in{particles, materials, walls, wall_geometry_, wall_runs_, wall_run_order_, wall_block_first_, periodic,
                           any_fixed, has_bonds_, dt, params.keep_pair_results};

@@ -9,6 +9,7 @@
 #include "forces/void_fraction.hpp"
 #include "core/block_times.hpp"
 #include "sim/energy_audit.hpp"
+#include "sim/energy_ledger.hpp"
 #include "state/load_sum.hpp"
 #include "search/neighbour_list.hpp"
 #include "state/materials.hpp"
@@ -69,6 +70,8 @@ class Simulation {
   double time = 0;            // [s]
   double dt = 0;              // [s]
   std::int64_t step = 0;
+  // The energy balance (sim/energy_ledger.hpp), kept each step while ledger.on (off by default).
+  EnergyLedger ledger;
 
   // One explicit step: contacts and forces at x^n with v^{n-1/2} (compute_forces), then
   // eq. 2.38-2.47.
@@ -153,6 +156,10 @@ class Simulation {
   void count_bonds();
   void index_contacts_per_particle();
   void integrate(bool any_fixed);
+  // The energy ledger's pass (sim/energy_ledger.cpp): before the motion, keep x^n, v^{n-1/2}, w;
+  // after it, account the step.
+  void keep_state_before_motion();
+  void account_energy(bool any_fixed);
 
   bool has_bonds_ = false;
   bool pair_results_kept_ = true;
@@ -187,6 +194,10 @@ class Simulation {
   std::vector<int> wall_runs_;  // first wall candidate of each particle, then the end
   std::vector<int> wall_run_order_, wall_block_first_;  // ForceLoopInput's
   VoidFractionScratch void_scratch_;  // working storage of the fluid's void fractions
+  // While ledger.on: the state before the motion, and the bonds before the force loop (those that
+  // broke this step release their energy).
+  std::vector<Vec3> ledger_x_, ledger_v_, ledger_w_;
+  std::vector<std::uint8_t> ledger_pair_bonded_, ledger_wall_bonded_;
 };
 
 }  // namespace dem

@@ -1,0 +1,173 @@
+#include "sim/energy_ledger.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "contact/model_table.hpp"
+#include "core/error.hpp"
+#include "forces/force_loop.hpp"
+#include "sim/simulation.hpp"
+
+namespace dem {
+
+namespace {
+constexpr int kFixedBits = 90;
+constexpr double kFixedLimit = 0x1p36;  // [J]: a term beyond it would overflow the fixed point
+}  // namespace
+
+void FixedSum::add(double x) {
+  if (!(std::abs(x) < kFixedLimit))
+    throw PhysicsError("energy log: a term of " + std::to_string(x) + " J in one step, beyond the ledger's range of 6.9e10 J",
+                       "the run has gone unstable (check the time step), or it is too large for the energy log");
+  sum_ += static_cast<__int128>(std::ldexp(x, kFixedBits));  // truncated towards zero: the same for any order
+}
+
+double FixedSum::value() const { return std::ldexp(static_cast<double>(sum_), -kFixedBits); }
+
+double EnergyLedger::scale() const {
+  return reference.kinetic_translation + reference.kinetic_rotation + std::abs(reference.elastic_normal) + reference.elastic_tangential +
+         totals.work_abs + std::abs(now.potential - reference.potential);
+}
+
+std::vector<double> EnergyLedger::values() const {
+  const EnergyState* states[] = {&reference, &now};
+  std::vector<double> v{have_reference ? 1.0 : 0.0};
+  for (const EnergyState* s : states)
+    v.insert(v.end(), {s->kinetic_translation, s->kinetic_rotation, s->potential, s->elastic_normal, s->elastic_tangential});
+  const EnergyTotals& t = totals;
+  v.insert(v.end(), {t.damping_normal, t.tangential_work, t.global_damping, t.released, t.work_walls, t.work_prescribed, t.work_abs});
+  return v;
+}
+
+void EnergyLedger::from_values(const std::vector<double>& v) {
+  if (v.size() != 18) throw std::invalid_argument("holds " + std::to_string(v.size()) + " values, not 18");
+  std::size_t k = 0;
+  have_reference = v[k++] != 0;
+  for (EnergyState* s : {&reference, &now})
+    for (double* x : {&s->kinetic_translation, &s->kinetic_rotation, &s->potential, &s->elastic_normal, &s->elastic_tangential}) *x = v[k++];
+  EnergyTotals& t = totals;
+  for (double* x : {&t.damping_normal, &t.tangential_work, &t.global_damping, &t.released, &t.work_walls, &t.work_prescribed, &t.work_abs})
+    *x = v[k++];
+}
+
+void Simulation::keep_state_before_motion() {
+  ledger_x_ = particles.x;
+  ledger_v_ = particles.v;
+  ledger_w_ = particles.w;
+}
+
+namespace {
+
+// What one contact adds to the step's sums.
+struct ContactTerms {
+  FixedSum damping, tangential_work, released, walls, elastic, springs;
+};
+
+// One contact (force `f` on i and n x f_t `tpr`; normal `n` from i towards j or the wall; overlap
+// `u` at x^n): its dashpot's and tangential forces' work with the mean velocities, its elastic
+// energy at the half step (eq. P31), and, where its bond broke this step, the bond's energy.
+// `dv_mean` = v̄_i - v̄_j at the contact point without the spin, `arm_w` = a_i w̄_i + a_j w̄_j,
+// `dv_now`, `dv_before` the same difference at n+1/2 and n-1/2 (translation only).
+void account_contact(const PairParams& q, const Vec3& f, const Vec3& tpr, const Vec3& spring, const Vec3& n, double u, double r_eff,
+                     bool bonded, bool broke, const Vec3& dv_mean, const Vec3& arm_w, const Vec3& dv_now, const Vec3& dv_before,
+                     double dt, ContactTerms& t) {
+  const double rate = n.dot(dv_mean);  // du/dt over the step
+  const double f_normal = f.dot(n);    // on i along n: < 0 repulsive
+  bool b = bonded;
+  const double f_el = MixedNormal::elastic(q, u, r_eff, b);  // repulsive > 0
+  // eq. P33: what the normal force did beyond the elastic one: the dashpot (and any clipping of it).
+  const double f_damp = -f_normal - f_el;
+  t.damping.add(f_damp * rate * dt);
+  // eq. P34: the rest of the contact's power, f · (v̄_i - v̄_j) + (n x f_t) · (a_i w̄_i + a_j w̄_j).
+  t.tangential_work.add(((f - f_normal * n).dot(dv_mean) + tpr.dot(arm_w)) * dt);
+  const double e = with_normal_law(q.law, [&](auto law) { return decltype(law)::elastic_energy(q, u, r_eff, bonded); });
+  // eq. P31: at the half step n+1/2, E(u^n) + ½ f_el(u^n) Δu, Δu the overlap's change to x^{n+1}.
+  t.elastic.add(e + 0.5 * f_el * n.dot(dv_now) * dt);
+  t.springs.add(with_tangential_law(q, [&](auto law) { return decltype(law)::stored_energy(q, spring, u, r_eff); }));
+  if (broke) {
+    // eq. P36: the bond's energy at the half step before, when it still held.
+    const double u_before = u - 0.5 * n.dot(dv_before) * dt;
+    t.released.add(with_normal_law(q.law, [&](auto law) { return decltype(law)::elastic_energy(q, u_before, r_eff, true); }));
+  }
+}
+
+}  // namespace
+
+void Simulation::account_energy(bool any_fixed) {
+  const Particles& p = particles;
+  const std::size_t count = p.size();
+  const Vec3* x0 = ledger_x_.data();
+  const Vec3 *v0 = ledger_v_.data(), *w0 = ledger_w_.data();
+  auto v_mean = [&](std::size_t k) { return Vec3(0.5 * (v0[k] + p.v[k])); };
+  auto w_mean = [&](std::size_t k) { return Vec3(0.5 * (w0[k] + p.w[k])); };
+  FixedSum kin_t, kin_r, potential, global, prescribed;
+  for (std::size_t k = 0; k < count; ++k) {
+    const double I = p.inertia(k);
+    kin_t.add(0.5 * p.mass[k] * p.v[k].squaredNorm());
+    kin_r.add(0.5 * I * p.w[k].squaredNorm());
+    // eq. P30: at the mean of x^n and x^{n+1} = x^{n+1} - v^{n+1/2} Δt/2.
+    potential.add(-p.mass[k] * params.gravity.dot(unwrapped_position(k) - 0.5 * dt * p.v[k]));
+    const Vec3 v = v_mean(k), w = w_mean(k);
+    const std::uint8_t fixed = any_fixed ? p.fixed[k] : 0;
+    if (fixed == kPrescribed) {
+      prescribed.add(-(block_force_[k].v.dot(v) + block_torque_[k].v.dot(w)) * dt);  // eq. P37
+    } else if (!fixed) {
+      // eq. P35: the integrator's m (v+ - v-) = F Δt - α m v̄ Δt takes α m |v̄|² Δt.
+      global.add((params.alpha_r * p.mass[k] * v.squaredNorm() + params.alpha_theta * I * w.squaredNorm()) * dt);
+    }
+  }
+  ContactTerms t;
+  const bool breaks = !ledger_pair_bonded_.empty() || !ledger_wall_bonded_.empty();
+  for (std::size_t k = 0; k < pairs_.size(); ++k) {
+    const bool broke = breaks && k < ledger_pair_bonded_.size() && ledger_pair_bonded_[k] && !pairs_.bonded[k];
+    if (!pairs_.active[k] && !broke) continue;
+    const int i = pairs_.slot_i[k], j = pairs_.slot_j[k];
+    const Vec3 d = periodic.any() ? separation<true>(periodic, x0[i], x0[j]) : separation<false>(periodic, x0[i], x0[j]);
+    const double dist = d.norm();
+    const Vec3 n = d / dist;
+    const double r_eff = p.radius[i] * p.radius[j] / (p.radius[i] + p.radius[j]);
+    const PairParams& q = materials.pair(p.material[i], p.material[j]);
+    account_contact(q, pairs_.sum[k].force, pairs_.sum[k].torque_per_radius, pairs_.spring[k], n, p.radius[i] + p.radius[j] - dist, r_eff,
+                    pairs_.bonded[k], broke, v_mean(i) - v_mean(j), p.radius[i] * w_mean(i) + p.radius[j] * w_mean(j), p.v[i] - p.v[j],
+                    v0[i] - v0[j], dt, t);
+  }
+  for (std::size_t k = 0; k < walls_.size(); ++k) {
+    const bool broke = breaks && k < ledger_wall_bonded_.size() && ledger_wall_bonded_[k] && !walls_.bonded[k];
+    if (!walls_.active[k] && !broke) continue;
+    const int i = walls_.slot_i[k], w = walls_.slot_j[k];
+    const WallGeometry& g = wall_geometry_[w];
+    const Vec3 c = closest_point(g, x0[i]);
+    const Vec3 to_wall = c - x0[i];
+    const double dist = to_wall.norm();
+    const Vec3 n = dist > 0 ? Vec3(to_wall / dist) : g.normal;
+    const Vec3 v_wall = g.velocity_of(c);
+    const Vec3& f = walls_.sum[k].force;
+    t.walls.add(f.dot(v_wall) * dt);  // eq. P37
+    const PairParams& q = materials.pair(p.material[i], walls[w].material);
+    account_contact(q, f, walls_.sum[k].torque_per_radius, walls_.spring[k], n, p.radius[i] - dist, p.radius[i], walls_.bonded[k], broke,
+                    v_mean(i) - v_wall, p.radius[i] * w_mean(i), p.v[i] - v_wall, v0[i] - v_wall, dt, t);
+  }
+  ledger_pair_bonded_.clear();
+  ledger_wall_bonded_.clear();
+
+  EnergyLedger& l = ledger;
+  l.now = EnergyState{kin_t.value(), kin_r.value(), potential.value(), t.elastic.value(), t.springs.value()};
+  if (!l.have_reference) {  // the first step accounted is the reference: its own work is not counted
+    l.reference = l.now;
+    l.totals = EnergyTotals{};
+    l.have_reference = true;
+    return;
+  }
+  EnergyTotals& s = l.totals;
+  const double walls_in = t.walls.value(), prescribed_in = prescribed.value();
+  s.damping_normal += t.damping.value();
+  s.tangential_work += t.tangential_work.value();
+  s.global_damping += global.value();
+  s.released += t.released.value();
+  s.work_walls += walls_in;
+  s.work_prescribed += prescribed_in;
+  s.work_abs += std::abs(walls_in) + std::abs(prescribed_in);
+}
+
+}  // namespace dem

@@ -1,0 +1,75 @@
+#pragma once
+// The energy balance of a run (docs/physics.md eq. P29-P39), kept only when asked (run-stage's
+// energy log): each step, after the motion, a pass over the particles and contacts adds what the
+// step dissipated, released and put in, and measures what the particles and contacts hold. The
+// force loop is not touched: a run that does not ask pays one branch per step.
+//
+// The scheme follows the integrator (leapfrog): the force at step n acts on the velocity between
+// the half steps n-1/2 and n+1/2, so the kinetic energy changes by exactly F · (v^{n-1/2} +
+// v^{n+1/2})/2 Δt. Every work is therefore taken with the mean of the two half-step velocities,
+// the kinetic energy at the half step n+1/2, the potential energy at the mean of x^n and x^{n+1},
+// and each contact's elastic energy at the half step too (eq. P31): the balance is then exact but
+// for the elastic energy of non-linear laws and the breaking of bonds, both O(Δt²).
+//
+// Every sum is exact in fixed point (FixedSum), so the figures have the same bits whatever the
+// storage order of particles and contacts and the thread count.
+#include <cstdint>
+#include <vector>
+
+namespace dem {
+
+// A sum of doubles, exact in fixed point (2^-90 J, range ±2^37 J): the same bits in any order.
+class FixedSum {
+ public:
+  void add(double x);
+  double value() const;
+
+ private:
+  __int128 sum_ = 0;
+};
+
+// What the ledger has accumulated since its reference (the end of the first step it saw) [J].
+struct EnergyTotals {
+  double damping_normal = 0;    // the normal dashpot's work, eq. P33
+  double tangential_work = 0;   // work of the tangential forces on the particles, eq. P34
+  double global_damping = 0;    // eq. P35
+  double released = 0;          // elastic energy of bonds when they broke, eq. P36
+  double work_walls = 0;        // by moving walls, eq. P37
+  double work_prescribed = 0;   // by what holds the prescribed particles to their motion, eq. P37
+  double work_abs = 0;          // Σ |each step's input| (the scale, eq. P39)
+};
+
+// What the particles and contacts hold at the half step just reached [J].
+struct EnergyState {
+  double kinetic_translation = 0, kinetic_rotation = 0;
+  double potential = 0;           // gravity, at the mean of x^n and x^{n+1} (unwrapped)
+  double elastic_normal = 0;      // eq. P31, bonds included
+  double elastic_tangential = 0;  // the tangential springs, ½ |f_s|² / k_t
+  double total() const { return kinetic_translation + kinetic_rotation + potential + elastic_normal + elastic_tangential; }
+};
+
+struct EnergyLedger {
+  bool on = false;         // accumulate (Simulation::advance)
+  bool have_reference = false;
+  EnergyState reference;   // at the end of the first step accounted
+  EnergyTotals totals;
+  EnergyState now;         // at the last step accounted
+
+  // Friction and the tangential dashpot together, eq. P34: what the tangential forces took from the
+  // particles less what the springs now hold more than at the reference.
+  double friction() const { return -totals.tangential_work - (now.elastic_tangential - reference.elastic_tangential); }
+  double dissipated() const { return totals.damping_normal + friction() + totals.global_damping; }
+  double input() const { return totals.work_walls + totals.work_prescribed; }
+  // eq. P38: held + dissipated + released - input - held at the reference (0 in a closed balance).
+  double error() const { return now.total() + dissipated() + totals.released - input() - reference.total(); }
+  // eq. P39: the energy at the reference that can move (kinetic and elastic), plus the input and the
+  // change in potential energy since.
+  double scale() const;
+
+  // The checkpoint's form (/run/energy): every double above, in a fixed order; from_values throws
+  // std::invalid_argument on a wrong count.
+  std::vector<double> values() const;
+  void from_values(const std::vector<double>& v);
+};
+
+}  // namespace dem

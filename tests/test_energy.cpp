@@ -1,0 +1,258 @@
+// The energy ledger (sim/energy_ledger.hpp, docs/physics.md eq. P29-P39) against closed forms:
+// the dashpot's loss in a binary collision, Coulomb friction's in a sphere sliding into rolling,
+// a bond's energy when it breaks; and the whole balance in bonded blocks that collide and a
+// sphere on a tilting wall, with the same bits on any thread count.
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "../bench/binary_collision.hpp"
+#include "core/error.hpp"
+#include "run/energy_log.hpp"
+#include "sim/health.hpp"
+#include "sim/simulation.hpp"
+
+namespace dem {
+namespace {
+
+// --- A damped binary collision: the dashpot takes ½ m* v² (1 - e²). ---------------------------
+TEST(Energy, DashpotTakesHalfMStarVSquaredTimesOneMinusESquaredInABinaryCollision) {
+  using namespace collision;
+  for (bool wall : {false, true})
+    for (double eta : {0.3, 0.7}) {
+      Shot s;
+      s.wall = wall;
+      s.eta = eta;
+      const double m = effective_mass(wall);
+      s.t_ref = linear_closed_form(s.kn, m, eta, s.v).duration;
+      s.ledger = true;
+      const Result r = collide(s);
+      const double e0 = 0.5 * m * s.v * s.v;
+      const double closed = e0 * (1 - eta * eta);
+      // tests/test_restitution.cpp: at 50 steps per contact the restitution is within 1 % of eta,
+      // so the loss ½ m* v² (1 - e²) is within ½ m* v² (e² - (0.99 e)²) ≈ 0.02 e² ½ m* v² of it.
+      EXPECT_NEAR(r.ledger.totals.damping_normal, closed, 0.02 * eta * eta * e0) << (wall ? "wall " : "pair ") << eta;
+      // Against the loss the run itself shows (the restitution it reached): the ledger takes the
+      // dashpot's work as the integrator applies it, so only the elastic energy at the touch and
+      // the release is off, O((ω Δt)²) = (π/50)² = 0.4 % of ½ m* v² at most.
+      const double shown = e0 * (1 - r.restitution * r.restitution);
+      EXPECT_NEAR(r.ledger.totals.damping_normal, shown, 4e-3 * e0) << (wall ? "wall " : "pair ") << eta;
+      EXPECT_LT(std::abs(r.ledger.error()), 4e-3 * e0) << (wall ? "wall " : "pair ") << eta;
+      EXPECT_EQ(r.ledger.totals.global_damping, 0.0);
+    }
+}
+
+// --- A sphere sliding on a plane until it rolls: friction takes m v0² / 7. ----------------------
+// Closed form: sliding at v0 without spin, the slip speed v - a ω falls at (1 + 5/2) μ g, so the
+// sphere slides a slip distance v0² / (7 μ g), and friction takes μ m g times it = m v0² / 7 (the
+// kinetic energy drops from ½ m v0² to ½ m (5/7 v0)² (1 + 2/5) = 5/7 of it).
+TEST(Energy, FrictionTakesMuMGTimesTheSlipDistanceOfASphereSlidingIntoRolling) {
+  Simulation sim;
+  Material m;
+  m.name = "steel";
+  m.density = 7800;
+  m.kn = m.kt = 1e6;
+  m.friction_angle = 20;
+  m.restitution = 0.5;
+  m.restitution_t = 1;
+  sim.materials = MaterialTable({m}, {});
+  const double a = 0.005, mu = std::tan(20 * std::numbers::pi / 180), g = 9.81, v0 = 0.5;
+  sim.walls.push_back(Wall{"floor", 0, {Vec3(-5, -5, 0), Vec3(5, -5, 0), Vec3(5, 5, 0), Vec3(-5, 5, 0)}, {}});
+  sim.particles.add(0, Vec3(0, 0, a), a, m.density, 0);
+  const double mass = sim.particles.mass[0];
+  sim.particles.x[0].z() = a - mass * g / m.kn;  // at rest on the floor: no bounce to damp
+  sim.particles.v[0] = Vec3(v0, 0, 0);
+  sim.dt = 2e-6;  // 1/40 of the contact's period 2π sqrt(m/kn)
+  sim.ledger.on = true;
+  const double t_roll = 2 * v0 / (7 * mu * g);
+  while (sim.time < 2 * t_roll) sim.advance();
+  const EnergyLedger& l = sim.ledger;
+  const double closed = mass * v0 * v0 / 7;
+  // The ledger starts after the first step (its friction, μ m g v0 Δt, is not counted: 1e-4 of
+  // the closed form here), and the spring's stick-slip at the change to rolling costs a few steps'
+  // slip: 0.5 % covers both.
+  EXPECT_NEAR(l.friction(), closed, 5e-3 * closed);
+  EXPECT_NEAR(sim.particles.v[0].x(), 5.0 / 7.0 * v0, 5e-3 * v0);  // it does roll
+  EXPECT_LT(std::abs(l.error()), 1e-3 * closed);
+}
+
+// --- A bonded pair pulled apart until the bond breaks: it releases ½ kn s*², s* = F/kn. ---------
+TEST(Energy, ABrokenBondReleasesTheEnergyItHeldWhenItBroke) {
+  constexpr double kKn = 1e5, kStrength = 2.0, kRadius = 1e-3, kRate = 0.02;
+  Simulation sim;
+  Material m;
+  m.name = "cement";
+  m.law = NormalLaw::Liu;
+  m.density = 2500;
+  m.kn = m.kt = kKn;
+  m.tensile_strength = kStrength;
+  m.restitution = m.restitution_t = 1;  // no dashpot: what the pull puts in is held until the break
+  sim.materials = MaterialTable({m}, {});
+  sim.params.gravity = Vec3::Zero();
+  const double u0 = 1e-7;
+  sim.particles.add(0, Vec3(-kRadius + u0 / 2, 0, 0), kRadius, m.density, 0);
+  sim.particles.add(1, Vec3(kRadius - u0 / 2, 0, 0), kRadius, m.density, 0);
+  ASSERT_EQ(sim.bond_present_contacts(false), 1u);
+  // Both prescribed, moving apart at kRate: whatever holds them does the bond's work.
+  sim.particles.fixed.assign(2, kPrescribed);
+  sim.particles.v[0] = Vec3(-kRate / 2, 0, 0);
+  sim.particles.v[1] = Vec3(kRate / 2, 0, 0);
+  const double s_break = kStrength / kKn;  // eq. 2.21: the tension kn s reaches F
+  sim.dt = s_break / kRate / 1000;         // 1,000 steps to the break
+  sim.ledger.on = true;
+  while (sim.has_bonds() && sim.step < 5000) sim.advance();
+  ASSERT_FALSE(sim.has_bonds());
+  const double closed = 0.5 * kKn * s_break * s_break;
+  // The bond breaks in the first step whose separation s exceeds s*, and the ledger takes its
+  // energy at the half step before: within one step's stretch of s*, kRate Δt = s*/1000, so
+  // within 2/1000 of ½ kn s*².
+  EXPECT_NEAR(sim.ledger.totals.released, closed, 2e-3 * closed);
+  // The prescribed motion put that energy in (from the first step on: the compression u0 it
+  // started with held ½ kn u0², 1e-6 of it).
+  EXPECT_NEAR(sim.ledger.totals.work_prescribed, closed, 2e-3 * closed);
+  EXPECT_LT(std::abs(sim.ledger.error()), 2e-3 * closed);
+}
+
+// --- Bonded blocks colliding: the balance closes at every step. -------------------------------
+// Two cubes of 5 x 5 x 5 bonded spheres (liu law, friction, dashpot) meet head on at 1 m/s; with
+// a bond strength that lets the impact break bonds, and with unbreakable bonds.
+Simulation bonded_blocks(double strength) {
+  Simulation sim;
+  Material m;
+  m.name = "rock";
+  m.law = NormalLaw::Liu;
+  m.density = 2600;
+  m.kn = m.kt = 2e5;
+  m.friction_angle = 30;
+  m.cohesion = strength;
+  m.tensile_strength = strength;
+  m.restitution = 0.5;
+  m.restitution_t = 0.5;
+  sim.materials = MaterialTable({m}, {});
+  sim.params.gravity = Vec3(0, 0, -9.81);
+  const double a = 1e-3, pitch = 2 * a;  // touching: the bonds hold no energy at the start
+  int id = 0;
+  for (int block = 0; block < 2; ++block)
+    for (int k = 0; k < 5; ++k)
+      for (int j = 0; j < 5; ++j)
+        for (int i = 0; i < 5; ++i) {
+          const double x0 = block == 0 ? -5 * pitch - 0.5 * a : 0.5 * a;
+          sim.particles.add(id++, Vec3(x0 + i * pitch + (block ? 0.3 * a : 0.0), j * pitch + (block ? 0.4 * a : 0.0), k * pitch), a,
+                            m.density, 0);
+          sim.particles.v.back() = Vec3(block == 0 ? 0.5 : -0.5, 0, 0);
+        }
+  sim.bond_present_contacts(false, 1e-6);  // gaps of round-off count as touching
+  sim.dt = 0.2 * sim.critical_time_step();
+  return sim;
+}
+
+// Runs `steps` steps with the ledger and checks |error| <= 1 % of its scale after each (the
+// issue's bound; the scheme's own error is O((ω Δt)²) per touch and per break).
+void run_checking_balance(Simulation& sim, int steps, double& worst) {
+  sim.ledger.on = true;
+  worst = 0;
+  for (int n = 0; n < steps; ++n) {
+    sim.advance();
+    if (!sim.ledger.have_reference) continue;
+    worst = std::max(worst, std::abs(sim.ledger.error()) / sim.ledger.scale());
+  }
+}
+
+TEST(Energy, BalanceOfBondedBlocksCollidingClosesWithinOnePercentAtEveryStep) {
+  for (double strength : {0.05, 1e9}) {
+    Simulation sim = bonded_blocks(strength);
+    const std::size_t bonds0 = intact_bonds(sim);
+    double worst = 0;
+    run_checking_balance(sim, 1500, worst);  // the impact is over by step 1,000
+    EXPECT_LT(worst, 0.01) << "strength " << strength;
+    const EnergyLedger& l = sim.ledger;
+    EXPECT_GT(l.totals.damping_normal, 0.0);
+    EXPECT_GT(l.dissipated(), 0.05 * l.scale()) << "the impact dissipates";  // not a balance of nothing
+    if (strength < 1) {
+      EXPECT_LT(intact_bonds(sim), bonds0) << "the weak bonds break";
+      EXPECT_GT(l.totals.released, 0.0);
+    } else {
+      EXPECT_EQ(intact_bonds(sim), bonds0);
+      EXPECT_EQ(l.totals.released, 0.0);
+    }
+    std::printf("energy balance, bonded blocks (strength %g N): worst |error|/scale %.3g, dissipated %.3g J of %.3g J, released %.3g J\n",
+                strength, worst, l.dissipated(), l.scale(), l.totals.released);
+  }
+}
+
+TEST(Energy, LedgerHasTheSameBitsOnOneAndTwoThreads) {
+  std::vector<double> values[2];
+  for (int t : {1, 2}) {
+    omp_set_num_threads(t);
+    Simulation sim = bonded_blocks(0.05);
+    double worst = 0;
+    run_checking_balance(sim, 600, worst);
+    values[t - 1] = sim.ledger.values();
+  }
+  omp_set_num_threads(omp_get_num_procs());
+  EXPECT_EQ(values[0], values[1]);
+}
+
+// --- A sphere lifted by a tilting wall: the wall's work goes into height, friction, damping. ----
+// A floor rotating about the y axis at 2 rad/s carries a sphere resting on it 3 cm from the axis:
+// the wall does work on it, and the balance closes.
+TEST(Energy, BalanceClosesWhileARotatingWallLiftsASphere) {
+  Simulation sim;
+  Material m;
+  m.name = "glass";
+  m.density = 2500;
+  m.kn = m.kt = 1e5;
+  m.friction_angle = 30;
+  m.restitution = 0.3;
+  m.restitution_t = 0.5;
+  sim.materials = MaterialTable({m}, {});
+  const double a = 2e-3;
+  sim.walls.push_back(Wall{"paddle", 0, {Vec3(-0.1, -0.1, 0), Vec3(0.1, -0.1, 0), Vec3(0.1, 0.1, 0), Vec3(-0.1, 0.1, 0)}, {}});
+  WallMotion turn;
+  turn.axis = -Vec3::UnitY();  // x towards z: the side x > 0 rises
+  turn.angular_speed = 2;
+  sim.walls[0].start_motion(turn, 0);
+  sim.particles.add(0, Vec3(0.03, 0, a - 2e-6), a, m.density, 0);
+  sim.dt = 0.1 * sim.critical_time_step();
+  double worst = 0;
+  run_checking_balance(sim, static_cast<int>(0.15 / sim.dt), worst);
+  EXPECT_LT(worst, 0.01);
+  // The wall works on the sphere (it lifts it, then the sphere rolls down the slope it makes).
+  EXPECT_GT(sim.ledger.totals.work_abs, 1e-3 * sim.ledger.scale());
+}
+
+TEST(Energy, IntervalTakesTheCommandLineThenTheSceneElseNone) {
+  EXPECT_EQ(energy_interval(7, 0.5, 1e-3), 7);
+  EXPECT_EQ(energy_interval(0, 0.5, 1e-3), 500);
+  EXPECT_EQ(energy_interval(0, 1e-9, 1e-3), 1);  // at least every step
+  EXPECT_EQ(energy_interval(0, 0, 1e-3), 0);     // not asked: no log
+}
+
+TEST(Energy, LedgerValuesRoundTripAndAWrongCountIsRefused) {
+  EnergyLedger l;
+  l.have_reference = true;
+  l.reference.potential = 1.5;
+  l.now.kinetic_rotation = 0.25;
+  l.totals.released = 3;
+  l.totals.work_abs = 4;
+  EnergyLedger back;
+  back.from_values(l.values());
+  EXPECT_EQ(back.values(), l.values());
+  EXPECT_THROW(back.from_values({1, 2}), std::invalid_argument);
+}
+
+TEST(Energy, FixedSumIsTheSameInAnyOrder) {
+  const double x[] = {1e-12, 3.7, -2.2e3, 5e-20, 1.0 / 3, -7e-9};
+  FixedSum forward, backward;
+  for (double v : x) forward.add(v);
+  for (int k = 5; k >= 0; --k) backward.add(x[k]);
+  EXPECT_EQ(forward.value(), backward.value());
+  EXPECT_NEAR(forward.value(), 1e-12 + 3.7 - 2.2e3 + 5e-20 + 1.0 / 3 - 7e-9, 1e-12);
+  FixedSum big;
+  EXPECT_THROW(big.add(1e12), PhysicsError);
+}
+
+}  // namespace
+}  // namespace dem
