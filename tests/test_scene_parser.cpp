@@ -603,6 +603,63 @@ std::vector<BadCase> fluid_bad_cases() {
 }
 
 INSTANTIATE_TEST_SUITE_P(BadFluid, SceneRejects, ::testing::ValuesIn(fluid_bad_cases()));
+// [stage.fibres]: a valid table, then each malformed key rejected with its name and what is allowed.
+const std::string kFibres = R"(
+[stage.fibres]
+volume_fraction = 0.005
+length = 0.012
+diameter = 1.0e-4
+youngs_modulus = 3.0e9
+tensile_strength = 3.0e8
+seed = 7
+)";
+
+std::string with_fibres(const std::string& from, const std::string& to) { return kValid + replace(kFibres, from, to); }
+
+TEST(SceneParser, FibresParse) {
+  const Scene s = parse_scene(kValid + kFibres, "scene.toml");
+  ASSERT_TRUE(s.stages[0].fibres);
+  const FibreSpec& f = *s.stages[0].fibres;
+  EXPECT_EQ(f.count, 0);
+  EXPECT_EQ(f.volume_fraction, 0.005);
+  EXPECT_EQ(f.length_min, 0.012);
+  EXPECT_EQ(f.length_max, 0.012);
+  EXPECT_EQ(f.diameter, 1e-4);
+  EXPECT_EQ(f.youngs_modulus, 3e9);
+  EXPECT_EQ(f.tensile_strength, 3e8);
+  EXPECT_EQ(f.seed, 7u);
+  const Scene r = parse_scene(with_fibres("volume_fraction = 0.005\nlength = 0.012", "count = 20\nlength_min = 0.01\nlength_max = 0.02"), "scene.toml");
+  EXPECT_EQ(r.stages[0].fibres->count, 20);
+  EXPECT_EQ(r.stages[0].fibres->length_min, 0.01);
+  EXPECT_EQ(r.stages[0].fibres->length_max, 0.02);
+  EXPECT_FALSE(parse_scene(kValid, "scene.toml").stages[0].fibres);
+}
+
+std::vector<BadCase> fibre_bad_cases() {
+  return {
+      {"fibres: count and fraction", with_fibres("seed = 7", "seed = 7\ncount = 3"), {"stage[0].fibres.count", "exactly one of count"}},
+      {"fibres: neither count nor fraction", with_fibres("volume_fraction = 0.005\n", ""), {"stage[0].fibres.count", "exactly one of count"}},
+      {"fibres: count zero", with_fibres("volume_fraction = 0.005", "count = 0"), {"stage[0].fibres.count = 0", "out of range"}},
+      {"fibres: fraction above half", with_fibres("volume_fraction = 0.005", "volume_fraction = 0.7"),
+       {"stage[0].fibres.volume_fraction = 0.7", "out of range", "(0, 0.5]"}},
+      {"fibres: no length", with_fibres("length = 0.012\n", ""), {"stage[0].fibres.length", "either length"}},
+      {"fibres: length and bounds", with_fibres("length = 0.012", "length = 0.012\nlength_min = 0.01"), {"stage[0].fibres.length", "either length"}},
+      {"fibres: bounds reversed", with_fibres("length = 0.012", "length_min = 0.02\nlength_max = 0.01"),
+       {"stage[0].fibres.length_max = 0.01", "out of range"}},
+      {"fibres: only length_min", with_fibres("length = 0.012", "length_min = 0.02"), {"stage[0].fibres.length_max is missing"}},
+      {"fibres: negative length", with_fibres("length = 0.012", "length = -0.012"), {"stage[0].fibres.length = -0.012", "out of range"}},
+      {"fibres: zero diameter", with_fibres("diameter = 1.0e-4", "diameter = 0.0"), {"stage[0].fibres.diameter = 0", "out of range", "m"}},
+      {"fibres: no diameter", with_fibres("diameter = 1.0e-4\n", ""), {"stage[0].fibres.diameter is missing"}},
+      {"fibres: negative modulus", with_fibres("youngs_modulus = 3.0e9", "youngs_modulus = -3.0e9"),
+       {"stage[0].fibres.youngs_modulus", "out of range", "Pa"}},
+      {"fibres: zero strength", with_fibres("tensile_strength = 3.0e8", "tensile_strength = 0.0"),
+       {"stage[0].fibres.tensile_strength = 0", "out of range", "Pa"}},
+      {"fibres: negative seed", with_fibres("seed = 7", "seed = -7"), {"stage[0].fibres.seed = -7", "out of range"}},
+      {"fibres: unknown key", with_fibres("seed = 7", "seed = 7\nstrength = 1.0"), {"stage[0].fibres.strength", "unknown key"}},
+  };
+}
+
+INSTANTIATE_TEST_SUITE_P(BadFibres, SceneRejects, ::testing::ValuesIn(fibre_bad_cases()));
 
 }  // namespace
 }  // namespace dem

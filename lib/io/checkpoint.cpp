@@ -553,6 +553,45 @@ void wall_datasets(Io& io, A& a) {
   io.doubles_shaped("/walls/motion_table_rows", a.table_rows, {-1, 4}, nullptr);
 }
 
+// Fibres (added within schema 4: a file without /fibres has none). Ties refer to particles by id.
+template <class Io, class F>
+void fibre_datasets(Io& io, F& f) {
+  io.group("/fibres");
+  io.int32s("/fibres/first_tie", f.first_tie);
+  const long nf = static_cast<long>(f.first_tie.size()) - 1;
+  io.doubles("/fibres/area", f.area, "m^2", nf);
+  io.doubles("/fibres/youngs_modulus", f.modulus, "Pa", nf);
+  io.doubles("/fibres/tensile_strength", f.strength, "Pa", nf);
+  io.int64s("/fibres/tie_particle", f.tie_id);
+  const long nt = static_cast<long>(f.tie_id.size());
+  io.vec3s("/fibres/tie_offset", f.tie_offset, "m", nt);
+  io.doubles("/fibres/segment_rest_length", f.rest, "m");
+  io.uint8s("/fibres/segment_broken", f.broken, static_cast<long>(f.rest.size()));
+}
+
+// A fibre set as read, checked before the run trusts it (the fuzzer feeds this reader).
+void check_fibres(const std::string& path, const FibreSet& f, const Particles& p) {
+  const auto bad = [&](const std::string& what) { throw IoError(path + ": /fibres/" + what + " (damaged file)"); };
+  const long nf = static_cast<long>(f.area.size()), nt = static_cast<long>(f.tie_id.size());
+  if (f.first_tie.empty() || f.first_tie[0] != 0 || f.first_tie.back() != nt) bad("first_tie does not start at 0 and end at the tie count");
+  for (long k = 0; k < nf; ++k)
+    if (!(f.first_tie[k + 1] - f.first_tie[k] >= 2)) bad("first_tie gives a fibre fewer than two ties");
+  if (static_cast<long>(f.rest.size()) != nt - nf) bad("segment_rest_length does not hold one length per segment (ties - fibres)");
+  for (const auto& [values, name] : {std::pair{&f.area, "area"}, {&f.modulus, "youngs_modulus"}, {&f.strength, "tensile_strength"}})
+    for (double v : *values)
+      if (!(std::isfinite(v) && v > 0)) bad(std::string(name) + " holds a value that is not a positive number");
+  for (double l : f.rest)
+    if (!(std::isfinite(l) && l > 0)) bad("segment_rest_length holds a length that is not positive");
+  for (std::uint8_t b : f.broken)
+    if (b > 1) bad("segment_broken holds neither 0 nor 1");
+  for (const Vec3& o : f.tie_offset)
+    if (!o.allFinite()) bad("tie_offset is not finite");
+  std::vector<Index> ids(p.id);
+  std::sort(ids.begin(), ids.end());
+  for (Index id : f.tie_id)
+    if (!std::binary_search(ids.begin(), ids.end(), id)) bad("tie_particle names particle id " + std::to_string(id) + ", which does not exist");
+}
+
 MaterialArrays material_arrays(const MaterialTable& table) {
   MaterialArrays a;
   const std::vector<PropertyKey> keys = all_property_keys();
@@ -672,6 +711,11 @@ void write_all(Writer& w, const Simulation& sim, const CheckpointMeta& meta) {
 
   const WallArrays walls = wall_arrays(sim.walls, sim.time);
   wall_datasets(io, walls);
+
+  if (!sim.fibres.empty()) {
+    FibreSet fibres = sim.fibres;
+    fibre_datasets(io, fibres);
+  }
 }
 
 }  // namespace
@@ -875,6 +919,14 @@ void read_checkpoint(const std::string& path, Simulation& sim, CheckpointMeta& m
     for (int v = 0; v < nvert; ++v)
       if (now[v] != Vec3(a.current[12 * k + 3 * v], a.current[12 * k + 3 * v + 1], a.current[12 * k + 3 * v + 2]))
         throw IoError(path + ": wall '" + wl.name + "': /walls/vertices disagrees with its base vertices and motion (damaged file)");
+  }
+
+  sim.fibres = FibreSet{};
+  if (r.has("/fibres/first_tie")) {
+    FibreSet& f = sim.fibres;
+    fibre_datasets(io, f);
+    check_fibres(path, f, p);
+    f.index();
   }
 }
 

@@ -1236,6 +1236,29 @@ FluidParams read_fluid(TableReader& r) {
   return f;
 }
 
+// [stage.fibres] (generation/fibre_placement.hpp): how many, how long, and the fibre's material.
+FibreSpec read_fibres(TableReader& r) {
+  FibreSpec f;
+  if (r.has("count") == r.has("volume_fraction"))
+    r.fail_at(nullptr, "count", "give exactly one of count (fibres) and volume_fraction (fibre volume / sample volume)");
+  if (r.has("count")) f.count = r.integer("count", 1, 100000000);
+  else f.volume_fraction = r.number("volume_fraction", 0, 0.5, "(fibre volume / the particles' bounding box)", true);
+  if (r.has("length") == (r.has("length_min") || r.has("length_max")))
+    r.fail_at(nullptr, "length", "give either length (one length) or both length_min and length_max (drawn uniformly) [m]");
+  if (r.has("length")) {
+    f.length_min = f.length_max = r.number("length", 0, kInf, "m", true);
+  } else {
+    f.length_min = r.number("length_min", 0, kInf, "m", true);
+    f.length_max = r.number("length_max", f.length_min, kInf, "m (at least length_min)");
+  }
+  f.diameter = r.number("diameter", 0, kInf, "m", true);
+  f.youngs_modulus = r.number("youngs_modulus", 0, kInf, "Pa", true);
+  f.tensile_strength = r.number("tensile_strength", 0, kInf, "Pa", true);
+  f.seed = static_cast<std::uint64_t>(r.integer_or("seed", 1, 0, std::numeric_limits<long>::max()));
+  r.finish();
+  return f;
+}
+
 void read_stages(TableReader& top, Scene& sc) {
   const auto list = top.tables("stage");
   for (std::size_t k = 0; k < list.size(); ++k) {
@@ -1329,6 +1352,10 @@ void read_stages(TableReader& top, Scene& sc) {
       TableReader fr(*t, top.file(), r.name("fluid"));
       s.fluid = read_fluid(fr);
       fr.finish();
+    }
+    if (const toml::table* ft = r.subtable("fibres")) {
+      TableReader fr(*ft, top.file(), r.name("fibres"));
+      s.fibres = read_fibres(fr);
     }
     r.finish();
     sc.stages.push_back(std::move(s));

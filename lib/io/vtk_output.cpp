@@ -310,4 +310,29 @@ void write_lines_vtp(const std::string& path, const std::vector<Vec3>& points, c
   });
 }
 
+void write_fibres_vtp(const std::string& path, const Particles& p, const PeriodicBox& box, const FibreSet& fibres) {
+  FibreSet f = fibres;  // its slots found for this storage order
+  f.resolve(p);
+  const std::size_t ns = f.segments();
+  std::vector<Vec3> points;
+  std::vector<long> lines;
+  VtkArray tension{"tension", 1, {}}, broken{"broken", 1, {}}, fibre{"fibre", 1, {}};
+  points.reserve(2 * ns), lines.reserve(2 * ns);
+  for (std::size_t s = 0; s < ns; ++s) {
+    const int a = f.tie_of[s];
+    // A tie whose particle is gone (its segments broken) is drawn at its neighbour's point.
+    const int known = f.tie_slot[a] >= 0 ? a : a + 1;
+    const Vec3 start = f.tie_slot[known] >= 0 ? f.tie_point(p, known) : Vec3::Zero();
+    const bool whole = f.tie_slot[a] >= 0 && f.tie_slot[a + 1] >= 0;
+    lines.push_back(static_cast<long>(points.size()));
+    points.push_back(start);
+    lines.push_back(static_cast<long>(points.size()));
+    points.push_back(whole ? Vec3(start + f.span(p, box, a, a + 1)) : start);
+    tension.values.push_back(f.tension[s]);
+    broken.values.push_back(f.broken[s]);
+    fibre.values.push_back(f.fibre_of[s]);
+  }
+  write_lines_vtp(path, points, lines, {}, {tension, broken, fibre});
+}
+
 }  // namespace dem

@@ -7,8 +7,10 @@
 #include <vector>
 
 #include "core/types.hpp"
+#include "forces/fibres.hpp"
 #include "io/atomic_write.hpp"
 #include "state/particles.hpp"
+#include "state/periodic.hpp"
 #include "walls/wall.hpp"
 
 namespace dem {
@@ -45,6 +47,12 @@ void write_lines_vtp(const std::string& path, const std::vector<Vec3>& points, c
 // One polygon per wall at its position at `time`. Cell data: wall_index, material (int32);
 // field data "wall_names". Throws IoError when the file cannot be written.
 void write_walls_vtp(const std::string& path, const std::vector<Wall>& walls, double time);
+
+// Fibres as polydata (.vtp): each segment one line between its two tie points (the second at the
+// first's point plus the span, so that a segment across a periodic boundary is drawn whole).
+// Cell data per segment: tension [N] (of the last force computation), broken (0/1), fibre (its
+// fibre's index). Throws IoError when the file cannot be written.
+void write_fibres_vtp(const std::string& path, const Particles& p, const PeriodicBox& box, const FibreSet& fibres);
 
 struct PvdEntry {
   double time;       // [s]

@@ -63,6 +63,19 @@ ParticleStress particle_stress(const Particles& p, const ContactForceSet& c) {
   return s;
 }
 
+void add_fibre_stress(const Particles& p, const PeriodicBox& box, const FibreSet& fibres, ParticleStress& s) {
+  for (std::size_t k = 0; k < fibres.segments(); ++k) {
+    const double t = fibres.tension[k];
+    if (t == 0) continue;
+    const int a = fibres.tie_of[k], b = a + 1, ia = fibres.tie_slot[a], ib = fibres.tie_slot[b];
+    const Vec3 e = fibres.span(p, box, a, b).normalized();
+    const Vec3 l = box.any() ? box.nearest(p.x[ib] - p.x[ia]) : Vec3(p.x[ib] - p.x[ia]);
+    const Mat3 half = 0.5 * t * e * l.transpose();  // eq. P64
+    s.moment[ia] += half;
+    s.moment[ib] += half;
+  }
+}
+
 std::vector<Mat3> particle_stress_tensors(const Particles& p, const ParticleStress& s) {
   std::vector<Mat3> out(p.size());
 #pragma omp parallel for schedule(static)

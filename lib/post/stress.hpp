@@ -16,6 +16,7 @@
 #include <Eigen/Core>
 
 #include "core/types.hpp"
+#include "forces/fibres.hpp"
 #include "post/contact_forces.hpp"
 #include "state/particles.hpp"
 
@@ -44,6 +45,12 @@ struct ParticleStress {
 };
 // Per-particle gather over the contacts in a fixed order: the same bits for any thread count.
 ParticleStress particle_stress(const Particles& p, const ContactForceSet& c);
+
+// Adds the fibres' part (docs/physics.md eq. P64): each segment between the particles a and b,
+// with tension T (fibres.tension) along e (tie a to tie b), acts as a contact carrying T e with
+// the branch vector l = x_b - x_a of the centres: each of the two particles takes half of
+// T e (x) l. A serial loop in segment order.
+void add_fibre_stress(const Particles& p, const PeriodicBox& box, const FibreSet& fibres, ParticleStress& s);
 
 // sigma_p = moment / V_p [Pa], the contact part.
 std::vector<Mat3> particle_stress_tensors(const Particles& p, const ParticleStress& s);

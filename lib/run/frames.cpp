@@ -20,12 +20,12 @@ std::string frame_name(const std::string& stage, const char* what, std::size_t k
   return stage + "/" + buf;
 }
 
-// particles_NNNNNN.vtu or walls_NNNNNN.vtp (6 digits or more), or its temporary (.tmp): the files
+// particles_NNNNNN.vtu, walls_NNNNNN.vtp or fibres_NNNNNN.vtp (6 digits or more), or its temporary (.tmp): the files
 // of a series, the only ones commit() and discard() remove.
 bool series_file(const std::string& name) {
   std::string n = name;
   if (n.size() > 4 && n.compare(n.size() - 4, 4, ".tmp") == 0) n.resize(n.size() - 4);
-  for (const auto& [prefix, ext] : {std::pair<std::string, std::string>{"particles_", ".vtu"}, {"walls_", ".vtp"}}) {
+  for (const auto& [prefix, ext] : {std::pair<std::string, std::string>{"particles_", ".vtu"}, {"walls_", ".vtp"}, {"fibres_", ".vtp"}}) {
     if (n.size() < prefix.size() + 6 + ext.size() || n.compare(0, prefix.size(), prefix) != 0 ||
         n.compare(n.size() - ext.size(), ext.size(), ext) != 0)
       continue;
@@ -81,13 +81,19 @@ void FrameWriter::write(const Simulation& sim, const std::vector<double>& times)
   }
   write_pvd(staging_ + "/" + stage_ + "_particles.pvd", particles);
   write_pvd(staging_ + "/" + stage_ + "_walls.pvd", walls);
+  if (!sim.fibres.empty()) {  // placed at the stage start: every frame of the stage has them
+    write_fibres_vtp(staging_ + "/" + frame_name(stage_, "fibres", k, "vtp"), sim.particles, sim.periodic, sim.fibres);
+    std::vector<PvdEntry> fibres;
+    for (std::size_t f = 0; f < times.size(); ++f) fibres.push_back({times[f], frame_name(stage_, "fibres", f, "vtp")});
+    write_pvd(staging_ + "/" + stage_ + "_fibres.pvd", fibres);
+  }
 }
 
 void FrameWriter::discard() const {
   if (dir_.empty()) return;
   const fs::path staging(staging_);
   for (const fs::path& f : series_files(staging / stage_)) remove_file(f);
-  for (const char* pvd : {"_particles.pvd", "_walls.pvd", "_particles.pvd.tmp", "_walls.pvd.tmp"}) {
+  for (const char* pvd : {"_particles.pvd", "_walls.pvd", "_fibres.pvd", "_particles.pvd.tmp", "_walls.pvd.tmp", "_fibres.pvd.tmp"}) {
     std::error_code ec;
     fs::remove(staging / (stage_ + pvd), ec);
   }
@@ -106,14 +112,14 @@ void FrameWriter::commit(std::size_t frames) const {
   // staged rest, which a restart completes and commits again.
   std::set<std::string> kept;
   for (std::size_t k = 0; k < frames; ++k)
-    for (const auto& [what, ext] : {std::pair<const char*, const char*>{"particles", "vtu"}, {"walls", "vtp"}}) {
+    for (const auto& [what, ext] : {std::pair<const char*, const char*>{"particles", "vtu"}, {"walls", "vtp"}, {"fibres", "vtp"}}) {
       const std::string name = frame_name(stage_, what, k, ext);
       kept.insert(fs::path(name).filename().string());
       if (fs::exists(staging / name, ec)) move_into_place(staging / name, dir / name);
     }
   for (const fs::path& f : series_files(dir / stage_))
     if (!kept.count(f.filename().string())) remove_file(f);
-  for (const char* pvd : {"_particles.pvd", "_walls.pvd"})
+  for (const char* pvd : {"_particles.pvd", "_walls.pvd", "_fibres.pvd"})
     if (fs::exists(staging / (stage_ + pvd), ec)) move_into_place(staging / (stage_ + pvd), dir / (stage_ + pvd));
   discard();  // what is left: temporaries of a killed run
 }

@@ -162,6 +162,11 @@ void post_macro(const PostOptions& o) {
   const double force_seconds = seconds_since(t);
   t = Clock::now();
   if (stress_wanted) ps = particle_stress(p, forces);
+  if (stress_wanted && !cur.fibres.empty()) {  // the fibres' part (eq. P64), their tensions at this state
+    FibreSet fibres = cur.fibres;
+    compute_fibre_tensions(fibres, p, cur.periodic);
+    add_fibre_stress(p, cur.periodic, fibres, ps);
+  }
   FragmentSet fragments;
   if (fragments_wanted) fragments = find_fragments(p, forces);
   const double stress_seconds = seconds_since(t);

@@ -10,6 +10,7 @@
 #include "control/servo.hpp"
 #include "core/error.hpp"
 #include "core/version.hpp"
+#include "generation/fibre_placement.hpp"
 #include "generation/fill.hpp"
 #include "generation/insertion.hpp"
 #include "io/checkpoint.hpp"
@@ -68,6 +69,20 @@ void start_velocities(Simulation& sim, const Scene& scene, const StageSpec& stag
                 << " particles (" << describe_group(sim, list[k].group) << ")\n";
     }
   }
+}
+
+// [stage.fibres]: placed once, at the stage start (a resumed run finds them in its checkpoint).
+void start_fibres(Simulation& sim, const Scene& scene, const StageSpec& stage) {
+  if (sim.periodic.any())
+    throw InputError(scene.path + ": stage \"" + stage.name + "\": [stage.fibres] with periodic boundaries ([simulation.periodic]) is not supported");
+  FibrePlacement placed;
+  try {
+    placed = place_fibres(sim.particles, *stage.fibres, sim.fibres);
+  } catch (const std::runtime_error& e) {
+    throw InputError(scene.path + ": stage \"" + stage.name + "\": [stage.fibres]: " + e.what());
+  }
+  std::cerr << "stage " << stage.name << ": placed " << placed.placed << " fibres with " << placed.ties << " ties (volume fraction "
+            << placed.volume / placed.box_volume << " of the particles' bounding box; " << placed.redrawn << " drawn again)\n";
 }
 
 void start_motions(Simulation& sim, const StageSpec& stage) {
@@ -192,6 +207,7 @@ void run_stage(const StageOptions& o) {
     sim.particles.void_fraction.clear();  // an earlier stage's: this one computes its own at its first step
     adopt_scene(sim, scene);
     apply_actions(sim, *stage);
+    if (stage->fibres) start_fibres(sim, scene, *stage);
     start_velocities(sim, scene, *stage);
     check_inside_walls(sim, scene, o.in);
     sim.dt = choose_time_step(with_inserted_sizes(sim, *stage), scene.simulation);

@@ -167,6 +167,18 @@ struct VelocitySpec {
   std::optional<Vec3> angular_velocity;  // [rad/s]; set_velocity: none = spins kept; prescribe: none = zero
 };
 
+// `[stage.fibres]`: straight fibres placed at random in the sample at the stage start
+// (generation/fibre_placement.hpp), each tied to the particles it passes through.
+struct FibreSpec {
+  long count = 0;                 // fibres to place; 0: by volume_fraction
+  double volume_fraction = 0;     // fibre volume / the particles' bounding box; 0: by count
+  double length_min = 0, length_max = 0;  // [m], drawn uniformly (equal: one length)
+  double diameter = 0;            // [m]
+  double youngs_modulus = 0;      // [Pa]
+  double tensile_strength = 0;    // [Pa]
+  std::uint64_t seed = 1;
+};
+
 struct StageSpec {
   std::string name;
   double duration = 0;      // [s]
@@ -181,6 +193,7 @@ struct StageSpec {
   std::vector<VelocitySpec> set_velocities;  // applied in order at the start, after the actions
   std::vector<VelocitySpec> prescribes;      // groups moved at a set velocity for the whole stage
   std::optional<FluidParams> fluid;          // [stage.fluid]: the fluid's force during the stage
+  std::optional<FibreSpec> fibres;           // fibres placed at the start, after the actions
 };
 
 struct Scene {

@@ -31,6 +31,7 @@ void Simulation::advance() {
   if (ledger.on) keep_state_before_motion();
   integrate(any_fixed);
   if (ledger.on) account_energy(any_fixed);
+  if (!fibres.empty()) rotate_ties(fibres, particles, dt);  // the ties turn with their particles
   time += dt;
   ++step;
   if (has_bonds_) count_bonds();  // bonds only ever break: stop paying once all are gone
@@ -52,6 +53,8 @@ void Simulation::compute_forces() {
   ForceBlocks loads{params.load_block, block_first_, block_needs_, needed_from_, by_key_start_, by_key_, force_times_,
                     block_done_,       ++force_epoch_, body,       simd_loops_on(), block_force_, block_torque_};
   const double worst_overlap = compute_contact_forces(in, choose_force_variant(materials, has_bonds()), pairs_, walls_, loads);
+  // Fibres: a force source after the contacts and body forces (one serial loop over segments).
+  if (!fibres.empty()) add_fibre_forces(fibres, particles, periodic, block_force_, block_torque_);
   pair_results_kept_ = params.keep_pair_results;
   contacts_modified();
   if (worst_overlap > params.max_overlap) report_overlap(worst_overlap);
@@ -392,6 +395,7 @@ void Simulation::audit_energy(bool any_prescribed) {
     b.particles = particles.size();
     b.start = b.now = mechanical_energy(particles, params.gravity, periodic);
     b.stored0 = stored_energy_bound(particles, materials, walls, wall_geometry_, periodic, pairs_, walls_);
+    if (!fibres.empty()) b.stored0 += fibres.elastic_energy(particles, periodic);
     for (std::size_t k = 0; k < particles.size(); ++k) b.potential_scale += particles.mass[k] * params.gravity.norm() * particles.radius[k];
     return;
   }
@@ -430,7 +434,8 @@ void Simulation::report_energy_gain() const {
 double Simulation::critical_time_step() const {
   double mmin = std::numeric_limits<double>::infinity();
   for (double m : particles.mass) mmin = std::min(mmin, m);
-  const double kmax = materials.max_stiffness(contact_scale());
+  // A fibre segment is a spring between two particles as a contact is (eq. P60).
+  const double kmax = std::max(materials.max_stiffness(contact_scale()), fibres.empty() ? 0.0 : fibres.max_stiffness());
   if (!(kmax > 0) || !std::isfinite(mmin)) return std::numeric_limits<double>::infinity();
   return 2 * std::sqrt(mmin / (2 * kmax));  // eq. 2.48 (Hart et al.), without FRAC
 }

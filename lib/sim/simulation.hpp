@@ -8,6 +8,7 @@
 #include "forces/fluid.hpp"
 #include "forces/void_fraction.hpp"
 #include "core/block_times.hpp"
+#include "forces/fibres.hpp"
 #include "sim/energy_audit.hpp"
 #include "sim/energy_ledger.hpp"
 #include "state/load_sum.hpp"
@@ -67,6 +68,7 @@ class Simulation {
   std::vector<Wall> walls;
   PeriodicBox periodic;  // none by default; positions stay inside it (set_periodic)
   SimParams params;
+  FibreSet fibres;  // tension-only fibres tied to particles (forces/fibres.hpp); none by default
   double time = 0;            // [s]
   double dt = 0;              // [s]
   std::int64_t step = 0;
