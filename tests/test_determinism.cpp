@@ -24,6 +24,7 @@
 #include "contact/model_table.hpp"
 #include "sim/simulation.hpp"
 
+#include "bead_cloud.hpp"
 #include "glass.hpp"
 #include "same_bits.hpp"
 
@@ -34,24 +35,7 @@ namespace {
 MaterialTable glass() { return glass_beads(25); }
 
 Simulation make_cloud() {
-  Simulation sim;
-  sim.materials = glass();
-  const double L = 0.02;
-  const Vec3 lo(0, 0, 0), hi(L, L, 2 * L);
-  // Six walls of a closed box.
-  for (int axis = 0; axis < 3; ++axis)
-    for (bool side : {false, true}) sim.walls.push_back(Wall{"w", 0, box_face(lo, hi, axis, side), {}});
-  GenerationSpec g;
-  g.box_min = lo;
-  g.box_max = hi;
-  g.count = 200;
-  g.radius_min = 0.0012;
-  g.radius_max = 0.0018;
-  g.material_fractions = {{0, 1.0}};
-  std::mt19937_64 rng(3);
-  fill_random(sim, g, rng);
-  std::uniform_real_distribution<double> u(-0.2, 0.2);
-  for (Vec3& v : sim.particles.v) v = Vec3(u(rng), u(rng), u(rng));
+  Simulation sim = bead_cloud();
   sim.dt = 0.1 * sim.critical_time_step();
   return sim;
 }

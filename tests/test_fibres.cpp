@@ -19,6 +19,7 @@
 #include "post/stress.hpp"
 #include "sim/simulation.hpp"
 
+#include "bead_cloud.hpp"
 #include "glass.hpp"
 #include "same_bits.hpp"
 
@@ -222,23 +223,7 @@ TEST(Fibres, LoveWeberPartOfAKnownTension) {
 // and two threads, with the storage shuffled and re-sorted every 7 steps, and after a restart
 // from a checkpoint half way.
 Simulation fibre_cloud() {
-  Simulation sim;
-  sim.materials = glass_beads(25);
-  const double L = 0.02;
-  const Vec3 lo(0, 0, 0), hi(L, L, 2 * L);
-  for (int axis = 0; axis < 3; ++axis)
-    for (bool side : {false, true}) sim.walls.push_back(Wall{"w", 0, box_face(lo, hi, axis, side), {}});
-  GenerationSpec g;
-  g.box_min = lo;
-  g.box_max = hi;
-  g.count = 200;
-  g.radius_min = 0.0012;
-  g.radius_max = 0.0018;
-  g.material_fractions = {{0, 1.0}};
-  std::mt19937_64 rng(3);
-  fill_random(sim, g, rng);
-  std::uniform_real_distribution<double> u(-0.2, 0.2);
-  for (Vec3& v : sim.particles.v) v = Vec3(u(rng), u(rng), u(rng));
+  Simulation sim = bead_cloud();
   FibreSpec fs;
   fs.count = 6;
   fs.length_min = 0.02, fs.length_max = 0.04;

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "render/render.hpp"
+#include "io/render.hpp"
 #include "tool_main.hpp"
 
 namespace {

@@ -1,4 +1,4 @@
-#include "render/render.hpp"
+#include "io/render.hpp"
 
 #include <algorithm>
 #include <cmath>
