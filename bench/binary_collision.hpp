@@ -38,7 +38,8 @@ struct Shot {
   double phase = 0;           // where within a step the first touch falls, [0, 1)
   double v = 0.5;             // approach speed [m/s]
   double kn = 1e5;            // cundall [N/m]
-  double young = 1e7, poisson = 0.25;  // hertz
+  double young = 1e7, poisson = 0.25;  // hertz, sphere a (and b unless set below)
+  double young_b = 0, poisson_b = 0;   // hertz, sphere b and the wall; 0: as sphere a
   bool ledger = false;        // keep the energy ledger (sim/energy_ledger.hpp)
 };
 
@@ -50,15 +51,15 @@ inline double effective_mass(bool wall) {
   return wall ? ma : ma * mb / (ma + mb);
 }
 
-inline Material material(const Shot& s, double density) {
+inline Material material(const Shot& s, bool b) {
   Material m;
-  m.name = density == kDensityA ? "a" : "b";
+  m.name = b ? "b" : "a";
   m.law = s.law;
-  m.density = density;
+  m.density = b ? kDensityB : kDensityA;
   m.kn = s.kn;
   m.kt = s.kn;
-  m.young_modulus = s.young;
-  m.poisson_ratio = s.poisson;
+  m.young_modulus = b && s.young_b > 0 ? s.young_b : s.young;
+  m.poisson_ratio = b && s.poisson_b > 0 ? s.poisson_b : s.poisson;
   m.friction_angle = 0;
   m.restitution = s.eta;
   m.restitution_t = 1;
@@ -68,7 +69,7 @@ inline Material material(const Shot& s, double density) {
 // One collision; restitution = separation speed after / approach speed before.
 inline Result collide(const Shot& s) {
   Simulation sim;
-  sim.materials = MaterialTable({material(s, kDensityA), material(s, kDensityB)}, {});
+  sim.materials = MaterialTable({material(s, false), material(s, true)}, {});
   sim.params.gravity = Vec3::Zero();
   sim.dt = s.t_ref / s.steps;
   sim.ledger.on = s.ledger;

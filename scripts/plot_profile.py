@@ -10,7 +10,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-from post_table import AXIS_WORDS, read_table, save_atomically, source_note  # noqa: E402
+from post_table import AXIS_WORDS, finish_figure, plot_slab_profile, read_table, source_note  # noqa: E402
 
 
 def labels(title: str, axis: str) -> dict:
@@ -24,17 +24,9 @@ def main(csv_path: str, png_path: str) -> None:
     axis = header[0].split("_")[0]
     words = labels(title, axis)
     fig, ax = plt.subplots(figsize=(5, 4.5), dpi=120)
-    used = data[:, col["count"]] > 0
-    z = data[used, 0] * 1e3
-    for name, label in (("mean_ux", "$u_x$"), ("mean_uy", "$u_y$"), ("mean_uz", "$u_z$"), ("mean_norm_u", "$|u|$")):
-        ax.plot(data[used, col[name]] * 1e3, z, marker="o", label=label)
-    ax.axvline(0, color="grey", lw=0.8)
-    ax.set_xlabel(words["xlabel"])
-    ax.set_ylabel(words["ylabel"])
-    fig.suptitle(words["title"], fontsize=10)
-    ax.set_title(words["subtitle"], fontsize=6, wrap=True)
-    ax.legend()
-    save_atomically(fig, png_path)
+    series = (("mean_ux", "$u_x$"), ("mean_uy", "$u_y$"), ("mean_uz", "$u_z$"), ("mean_norm_u", "$|u|$"))
+    plot_slab_profile(ax, data, col, series, words, scale=1e3)
+    finish_figure(fig, ax, words, png_path)
     plt.close(fig)
 
 

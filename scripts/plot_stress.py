@@ -21,7 +21,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-from post_table import AXIS_WORDS, read_table, save_atomically, source_note  # noqa: E402
+from post_table import AXIS_WORDS, finish_figure, plot_slab_profile, read_table, source_note  # noqa: E402
 
 
 def labels(title: str, header) -> dict:
@@ -51,17 +51,8 @@ def main(csv_path: str, png_path: str) -> None:
         ax.set_xlabel(words["xlabel"])
         ax.axhline(0, color="grey", lw=0.8)
     else:  # profile along an axis
-        used = data[:, col["count"]] > 0
-        z = data[used, 0] * 1e3
-        for name, label in names:
-            ax.plot(data[used, col[name]], z, marker="o", label=label)
-        ax.axvline(0, color="grey", lw=0.8)
-        ax.set_xlabel(words["xlabel"])
-        ax.set_ylabel(words["ylabel"])
-    fig.suptitle(words["title"], fontsize=10)
-    ax.set_title(words["subtitle"], fontsize=6, wrap=True)
-    ax.legend()
-    save_atomically(fig, png_path)
+        plot_slab_profile(ax, data, col, names, words)
+    finish_figure(fig, ax, words, png_path)
     plt.close(fig)
 
 

@@ -33,6 +33,26 @@ def save_atomically(fig, png_path: str) -> None:
     os.replace(png_path + ".tmp.png", png_path)
 
 
+def plot_slab_profile(ax, data, col, series, words, scale=1.0) -> None:
+    """A profile along an axis: each (column, label) of `series` (times `scale`) against the slab
+    centre in mm, the slabs with no particle left out, a zero line and the axis words."""
+    used = data[:, col["count"]] > 0
+    z = data[used, 0] * 1e3
+    for name, label in series:
+        ax.plot(data[used, col[name]] * scale, z, marker="o", label=label)
+    ax.axvline(0, color="grey", lw=0.8)
+    ax.set_xlabel(words["xlabel"])
+    ax.set_ylabel(words["ylabel"])
+
+
+def finish_figure(fig, ax, words, png_path: str) -> None:
+    """The title, post-macro's source note as a subtitle, the legend; saved atomically."""
+    fig.suptitle(words["title"], fontsize=10)
+    ax.set_title(words["subtitle"], fontsize=6, wrap=True)
+    ax.legend()
+    save_atomically(fig, png_path)
+
+
 AXIS_WORDS = {"x": "position x", "y": "position y", "z": "height z"}
 
 

@@ -11,6 +11,7 @@
 set -euo pipefail
 bin=$1 src=$(cd "$2" && pwd) py=$3
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+source "$src/catch_checkpoint.sh"
 pour=$src/data/energy_pour.toml
 
 "$bin/gen-primary" --scene "$pour" --out "$tmp/start.h5" --quiet
@@ -29,12 +30,7 @@ print(f"pour: {len(rows)} rows, worst |error|/scale {worst:.2g}, dissipated {los
 PY
 
 # 2. Resumed on two threads from a periodic checkpoint in the middle of the stage.
-OMP_NUM_THREADS=2 "$bin/run-stage" --scene "$pour" --stage pour --in "$tmp/start.h5" --out "$tmp/cut.h5" --checkpoint-every 1500 --quiet &
-pid=$!
-until [ -e "$tmp/cut.restart.h5" ] || ! kill -0 $pid 2> /dev/null; do sleep 0.002; done
-cp "$tmp/cut.restart.h5" "$tmp/mid.h5" 2> /dev/null || true
-wait $pid
-[ -e "$tmp/mid.h5" ] || { echo "FAIL: no periodic checkpoint seen before the stage ended"; exit 1; }
+catch_checkpoint "$tmp/cut.restart.h5" "$tmp/mid.h5" -- env OMP_NUM_THREADS=2 "$bin/run-stage" --scene "$pour" --stage pour --in "$tmp/start.h5" --out "$tmp/cut.h5" --checkpoint-every 1500 --quiet
 cmp "$tmp/full.energy.csv" "$tmp/cut.energy.csv" || { echo "FAIL: two threads give another energy log than one"; exit 1; }
 mv "$tmp/mid.h5" "$tmp/cut.restart.h5"
 cp "$tmp/full.energy.csv" "$tmp/cut.energy.csv.partial"

@@ -7,18 +7,14 @@
 set -euo pipefail
 bin=$1 src=$(cd "$2" && pwd) py=$3
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+source "$src/catch_checkpoint.sh"
 scene=$src/data/fibres.toml
 "$bin/gen-primary" --scene "$scene" --out "$tmp/start.h5" --quiet
 OMP_NUM_THREADS=1 "$bin/run-stage" --scene "$scene" --stage press --in "$tmp/start.h5" --out "$tmp/full.h5" --vtk "$tmp/vtk" 2> "$tmp/full.log"
 cat "$tmp/full.log"
 grep -q "stage press: placed 12 fibres" "$tmp/full.log" || { echo "FAIL: no fibre placement report"; exit 1; }
 
-OMP_NUM_THREADS=2 "$bin/run-stage" --scene "$scene" --stage press --in "$tmp/start.h5" --out "$tmp/cut.h5" --checkpoint-every 3000 --quiet &
-pid=$!
-until [ -e "$tmp/cut.restart.h5" ] || ! kill -0 $pid 2> /dev/null; do sleep 0.002; done
-cp "$tmp/cut.restart.h5" "$tmp/mid.h5" 2> /dev/null || true
-wait $pid
-[ -e "$tmp/mid.h5" ] || { echo "FAIL: no periodic checkpoint seen before the stage ended"; exit 1; }
+catch_checkpoint "$tmp/cut.restart.h5" "$tmp/mid.h5" -- env OMP_NUM_THREADS=2 "$bin/run-stage" --scene "$scene" --stage press --in "$tmp/start.h5" --out "$tmp/cut.h5" --checkpoint-every 3000 --quiet
 cp "$tmp/mid.h5" "$tmp/cut.restart.h5"
 rm "$tmp/cut.h5"
 OMP_NUM_THREADS=2 "$bin/run-stage" --scene "$scene" --stage press --in "$tmp/start.h5" --out "$tmp/cut.h5" --checkpoint-every 3000 --restart --quiet

@@ -14,6 +14,7 @@
 set -euo pipefail
 bin=$1 src=$(cd "$2" && pwd) py=$3
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+source "$src/catch_checkpoint.sh"
 fall=$src/data/health_fall.toml
 
 "$bin/gen-primary" --scene "$fall" --out "$tmp/start.h5" --quiet
@@ -56,12 +57,7 @@ print(f"free fall: {len(rows)} rows every {every} steps, KE = ½ M g² t² withi
 PY
 
 # 2. Resumed on two threads from a periodic checkpoint in the middle of the stage.
-OMP_NUM_THREADS=2 "$bin/run-stage" --scene "$fall" --stage fall --in "$tmp/start.h5" --out "$tmp/cut.h5" --checkpoint-every 1000 --quiet &
-pid=$!
-until [ -e "$tmp/cut.restart.h5" ] || ! kill -0 $pid 2> /dev/null; do sleep 0.002; done
-cp "$tmp/cut.restart.h5" "$tmp/mid.h5" 2> /dev/null || true
-wait $pid
-[ -e "$tmp/mid.h5" ] || { echo "FAIL: no periodic checkpoint seen before the stage ended"; exit 1; }
+catch_checkpoint "$tmp/cut.restart.h5" "$tmp/mid.h5" -- env OMP_NUM_THREADS=2 "$bin/run-stage" --scene "$fall" --stage fall --in "$tmp/start.h5" --out "$tmp/cut.h5" --checkpoint-every 1000 --quiet
 cmp "$tmp/full.health.csv" "$tmp/cut.health.csv" || { echo "FAIL: two threads give another health log than one"; exit 1; }
 # As a run killed after that checkpoint leaves it: the periodic checkpoint, and a partial CSV with
 # rows written after it (here all of them); the finished file of the killed run is not there.

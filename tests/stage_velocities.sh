@@ -9,6 +9,7 @@
 set -euo pipefail
 bin=$1 src=$(cd "$2" && pwd) py=$3
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+source "$src/catch_checkpoint.sh"
 scene=$src/data/velocities.toml
 "$bin/gen-primary" --scene "$scene" --out "$tmp/start.h5" --quiet
 OMP_NUM_THREADS=1 "$bin/run-stage" --scene "$scene" --stage pull --in "$tmp/start.h5" --out "$tmp/full.h5" 2> "$tmp/full.log"
@@ -19,12 +20,7 @@ grep -q "prescribed the velocity of 1 particles (ids 1 to 1)" "$tmp/full.log" ||
 grep -q "force on the 1 prescribed particles at the end" "$tmp/full.log" || { echo "FAIL: no force on the prescribed group"; exit 1; }
 
 # A periodic checkpoint from the middle of the stage, resumed after the run that wrote it ended.
-OMP_NUM_THREADS=2 "$bin/run-stage" --scene "$scene" --stage pull --in "$tmp/start.h5" --out "$tmp/cut.h5" --checkpoint-every 4000 --quiet &
-pid=$!
-until [ -e "$tmp/cut.restart.h5" ] || ! kill -0 $pid 2> /dev/null; do sleep 0.002; done
-cp "$tmp/cut.restart.h5" "$tmp/mid.h5" 2> /dev/null || true
-wait $pid
-[ -e "$tmp/mid.h5" ] || { echo "FAIL: no periodic checkpoint seen before the stage ended"; exit 1; }
+catch_checkpoint "$tmp/cut.restart.h5" "$tmp/mid.h5" -- env OMP_NUM_THREADS=2 "$bin/run-stage" --scene "$scene" --stage pull --in "$tmp/start.h5" --out "$tmp/cut.h5" --checkpoint-every 4000 --quiet
 "$py" "$src/compare_checkpoints.py" "$tmp/full.h5" "$tmp/cut.h5" > /dev/null || { echo "FAIL: two threads differ from one"; exit 1; }
 cp "$tmp/mid.h5" "$tmp/cut.restart.h5"
 rm "$tmp/cut.h5"

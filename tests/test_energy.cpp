@@ -224,10 +224,11 @@ TEST(Energy, BalanceClosesWhileARotatingWallLiftsASphere) {
 }
 
 TEST(Energy, IntervalTakesTheCommandLineThenTheSceneElseNone) {
-  EXPECT_EQ(energy_interval(7, 0.5, 1e-3), 7);
-  EXPECT_EQ(energy_interval(0, 0.5, 1e-3), 500);
-  EXPECT_EQ(energy_interval(0, 1e-9, 1e-3), 1);  // at least every step
-  EXPECT_EQ(energy_interval(0, 0, 1e-3), 0);     // not asked: no log
+  EXPECT_EQ(energy_interval(steps(7), seconds(0.5), 1e-3), 7);
+  EXPECT_EQ(energy_interval({}, steps(30), 1e-3), 30);  // the scene's "30 steps"
+  EXPECT_EQ(energy_interval({}, seconds(0.5), 1e-3), 500);
+  EXPECT_EQ(energy_interval({}, seconds(1e-9), 1e-3), 1);  // at least every step
+  EXPECT_EQ(energy_interval({}, {}, 1e-3), 0);     // not asked: no log
 }
 
 TEST(Energy, LedgerValuesRoundTripAndAWrongCountIsRefused) {

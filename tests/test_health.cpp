@@ -97,11 +97,11 @@ TEST(Health, KineticEnergyIsHalfMVSquaredAndHalfIOmegaSquaredWithTheSameBitsOnAn
 // least one step) over the default, a hundredth of the stage but never under 500 steps: both
 // sides of that floor, at step counts users run.
 TEST(Health, IntervalTakesTheCommandLineThenTheSceneThenAHundredthOfTheStageButAtLeast500Steps) {
-  EXPECT_EQ(health_interval(0, 0, 2.9, 3.7e-6), 7838) << "a long stage: 783,784 steps / 100";
-  EXPECT_EQ(health_interval(0, 0, 0.01, 1e-5), kMinDefaultHealthEvery) << "1,000 steps / 100 = 10, under the floor";
-  EXPECT_EQ(health_interval(0, 0.004, 0.01, 1e-5), 400) << "the scene's 0.004 s";
-  EXPECT_EQ(health_interval(0, 1e-9, 0.01, 1e-5), 1) << "at least one step";
-  EXPECT_EQ(health_interval(250, 0.004, 0.01, 1e-5), 250) << "the command line wins";
+  EXPECT_EQ(health_interval({}, {}, 2.9, 3.7e-6), 7838) << "a long stage: 783,784 steps / 100";
+  EXPECT_EQ(health_interval({}, {}, 0.01, 1e-5), kMinDefaultHealthEvery) << "1,000 steps / 100 = 10, under the floor";
+  EXPECT_EQ(health_interval({}, seconds(0.004), 0.01, 1e-5), 400) << "the scene's 0.004 s";
+  EXPECT_EQ(health_interval({}, seconds(1e-9), 0.01, 1e-5), 1) << "at least one step";
+  EXPECT_EQ(health_interval(steps(250), seconds(0.004), 0.01, 1e-5), 250) << "the command line wins";
 }
 
 }  // namespace

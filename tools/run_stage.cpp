@@ -12,39 +12,26 @@ int main(int argc, char** argv) {
   app.add_option("--in", o.in, "input checkpoint (HDF5)")->required()->check(CLI::ExistingFile);
   app.add_option("--out", o.out, "output checkpoint (HDF5), written atomically when the stage completes")->required();
   app.add_option("--vtk", o.vtk_dir, "directory for VTK frames and .pvd series");
-  app.add_option("--checkpoint-every", o.checkpoint_every, "steps between periodic checkpoints (OUT with .restart.h5)")
-      ->check(CLI::NonNegativeNumber);
+  dem::add_interval_option(app, "--checkpoint-every", o.checkpoint_every, "between periodic checkpoints (OUT with .restart.h5)", true);
   app.add_option("--checkpoint-minutes", o.checkpoint_minutes,
                  "wall-clock minutes between periodic checkpoints (default 30; 0 = none); Ctrl-C writes one too unless both are off")
       ->check(CLI::NonNegativeNumber);
   app.add_flag("--restart", o.restart, "resume from the periodic checkpoint if one exists");
   app.add_option("--wall-forces", o.wall_forces, "per-wall force and torque time series (CSV)");
-  app.add_option("--wall-forces-every", o.wall_forces_every, "steps between rows of --wall-forces (default 100)")
-      ->check(CLI::PositiveNumber);
+  dem::add_interval_option(app, "--wall-forces-every", o.wall_forces_every, "between rows of --wall-forces (default 100 steps)");
   auto* track = app.add_option("--track", o.track, "time series of chosen particles (CSV): position, velocity, spin");
   auto* track_ids = app.add_option("--track-ids", o.track_ids, "ids of the particles for --track, e.g. 0,17")
                         ->delimiter(',')
                         ->check(CLI::NonNegativeNumber);
   track->needs(track_ids);
   track_ids->needs(track);
-  app.add_option("--track-every", o.track_every, "steps between rows of --track (default 100)")
-      ->check(CLI::PositiveNumber)
-      ->needs(track);
-  const CLI::Validator whole_steps(
-      [](std::string& v) {
-        return v.find_first_not_of("0123456789") == std::string::npos && v.find_first_not_of('0') != std::string::npos
-                   ? std::string()
-                   : "a whole number of steps, 1 or more, is allowed; got " + v;
-      },
-      "STEPS >= 1");
-  app.add_option("--health-every", o.health_every,
-                 "steps between rows of the health log OUT with .health.csv (default: the stage's health_every in seconds, else a "
-                 "hundredth of the stage, at least 500 steps)")
-      ->check(whole_steps);
-  app.add_option("--energy-every", o.energy_every,
-                 "steps between rows of the energy log OUT with .energy.csv (default: the stage's energy_every in seconds; without "
-                 "either, no energy log)")
-      ->check(whole_steps);
+  dem::add_interval_option(app, "--track-every", o.track_every, "between rows of --track (default 100 steps)")->needs(track);
+  dem::add_interval_option(app, "--health-every", o.health_every,
+                           "between rows of the health log OUT with .health.csv (default: the stage's health_every, else a hundredth of "
+                           "the stage, at least 500 steps)");
+  dem::add_interval_option(app, "--energy-every", o.energy_every,
+                           "between rows of the energy log OUT with .energy.csv (default: the stage's energy_every; without either, no "
+                           "energy log)");
   app.add_flag("--quiet", o.quiet, "no progress output");
   dem::add_common_options(app, threads);
   o.command = dem::shell_command(argc, argv);

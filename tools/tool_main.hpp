@@ -9,6 +9,7 @@
 #include <omp.h>
 
 #include "core/error.hpp"
+#include "core/interval.hpp"
 #include "core/version.hpp"
 
 namespace dem {
@@ -17,6 +18,23 @@ inline void add_common_options(CLI::App& app, int& threads) {
   app.set_version_flag("--version", std::string(app.get_name()) + " (dem) " + kVersion + " (commit " + kCommit + ")");
   app.add_option("--threads", threads, "OpenMP threads (0 = OMP_NUM_THREADS or all cores); results are identical for any count")
       ->check(CLI::NonNegativeNumber);
+}
+
+// An interval option (core/interval.hpp): a bare number counts steps, a number with s seconds
+// ("0.01s"); 0 (off) only where `zero_ok`.
+inline CLI::Option* add_interval_option(CLI::App& app, const std::string& name, Interval& target, const std::string& help,
+                                        bool zero_ok = false) {
+  return app
+      .add_option_function<std::string>(
+          name,
+          [&target, name, zero_ok](const std::string& text) {
+            std::string why;
+            const std::optional<Interval> r = parse_interval(text, Interval::Unit::Steps, zero_ok, why);
+            if (!r) throw CLI::ValidationError(name, why);
+            target = *r;
+          },
+          help + "; a number of steps, or seconds with s (e.g. 0.01s)")
+      ->type_name(zero_ok ? "STEPS|SECONDSs (0 = off)" : "STEPS|SECONDSs");
 }
 
 // The options gen-primary, copy-settle and compact share (`needs_input`: all but gen-primary).

@@ -141,6 +141,19 @@ class TableReader {
     }
     return v;
   }
+  // An interval (core/interval.hpp): seconds as a number, or a string with its unit, "400 steps" or
+  // "0.01 s". 0 is allowed where `zero_ok` (it means off). `unit` is shown in messages.
+  Interval interval_or(const std::string& key, Interval def, bool zero_ok, const char* unit) {
+    const toml::node* n = node(key);
+    if (!n) return def;
+    if (n->is_number()) return seconds(number_of(*n, key, 0, std::numeric_limits<double>::infinity(), unit, !zero_ok));
+    if (!n->is_string())
+      fail_at(n, key, std::string("expected seconds (a number) or a string such as \"400 steps\" or \"0.01 s\", got ") + type_name(*n));
+    std::string why;
+    const std::optional<Interval> r = parse_interval(*n->value<std::string>(), Interval::Unit::Seconds, zero_ok, why);
+    if (!r) fail_at(n, key, why);
+    return *r;
+  }
   double number(const std::string& key, double lo, double hi, const char* unit, bool lo_open = false, bool hi_open = false) {
     return number_of(required(key), key, lo, hi, unit, lo_open, hi_open);
   }
@@ -272,7 +285,7 @@ SettleSpec read_settle(TableReader& parent, const std::string& key) {
   TableReader r(*t, parent.file(), parent.name(key));
   s.ke_ratio = r.number_or("ke_ratio", s.ke_ratio, 0, kInf, "(dimensionless)", true);
   s.max_time = r.number_or("max_time", s.max_time, 0, kInf, "s");  // 0: no settling
-  s.check_every = r.number_or("check_every", s.check_every, 0, kInf, "s", true);
+  s.check_every = r.interval_or("check_every", s.check_every, false, "s");
   r.finish();
   return s;
 }
@@ -1268,13 +1281,13 @@ void read_stages(TableReader& top, Scene& sc) {
     if (s.name.empty() || s.name.find_first_of("/\\ ") != std::string::npos) r.fail("name", "a stage name must be non-empty without '/', '\\' or spaces");
     if (sc.stage(s.name)) r.fail("name", "duplicate stage name");
     s.duration = r.number("duration", 0, kInf, "s", true);
-    s.output_every = r.number_or("output_every", 0.0, 0, kInf, "s (0 = first and last frame only)");
+    s.output_every = r.interval_or("output_every", {}, true, "s (0 = first and last frame only)");
     if (r.has("gravity")) {
       s.gravity = r.vec3("gravity");
       check_gravity(r, *s.gravity);
     }
-    s.health_every = r.number_or("health_every", 0.0, 0, kInf, "s (0 or absent = a hundredth of the stage, at least 500 steps)");
-    s.energy_every = r.number_or("energy_every", 0.0, 0, kInf, "s (absent = no energy log)", true);
+    s.health_every = r.interval_or("health_every", {}, true, "s (0 or absent = a hundredth of the stage, at least 500 steps)");
+    s.energy_every = r.interval_or("energy_every", {}, false, "s (absent = no energy log)");
     const auto actions = r.tables("action");
     for (std::size_t a = 0; a < actions.size(); ++a) {
       TableReader ar(*actions[a], top.file(), r.name(indexed("action", a)));

@@ -10,10 +10,8 @@ namespace dem {
 
 std::string energy_path(const std::string& out) { return beside_output(out, ".energy.csv"); }
 
-std::int64_t energy_interval(std::int64_t cli_steps, double scene_seconds, double dt) {
-  if (cli_steps > 0) return cli_steps;
-  if (scene_seconds > 0) return std::max<std::int64_t>(1, std::llround(scene_seconds / dt));
-  return 0;
+std::int64_t energy_interval(const Interval& cli, const Interval& scene, double dt) {
+  return cli.given() ? cli.steps(dt) : scene.steps(dt);
 }
 
 namespace {

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <string>
 
+#include "core/interval.hpp"
 #include "io/csv_series.hpp"
 #include "sim/simulation.hpp"
 
@@ -16,9 +17,9 @@ namespace dem {
 // The energy log that belongs to an output path: "x.h5" -> "x.energy.csv".
 std::string energy_path(const std::string& out);
 
-// Steps between energy rows: `cli_steps` if > 0 (run-stage --energy-every), else the stage's
-// energy_every [s] rounded to whole steps (at least 1) if > 0, else 0: no energy log.
-std::int64_t energy_interval(std::int64_t cli_steps, double scene_seconds, double dt);
+// Steps between energy rows: `cli` if given (run-stage --energy-every), else the stage's
+// energy_every if given, else 0: no energy log.
+std::int64_t energy_interval(const Interval& cli, const Interval& scene, double dt);
 
 class EnergyLog {
  public:

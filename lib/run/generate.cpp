@@ -118,14 +118,22 @@ void settle_and_write(const char* tool, Simulation& sim, const SettleSpec& spec,
   report(tool, sim, s, seconds_since(t0));
 }
 
+// Each tool's start: the output path checked before the run (not after it), the scene read, its
+// warnings printed, and the tool's own table required.
+template <class Has>
+Scene open_scene(const GenerateOptions& o, const char* tool, const char* table, Has has_table) {
+  check_output_file(o.out, "--out");
+  Scene scene = read_scene_file(o.scene);
+  print_scene_warnings(scene, tool);
+  if (!has_table(scene)) throw InputError(o.scene + ": " + tool + " needs a [" + table + "] table");
+  return scene;
+}
+
 }  // namespace
 
 void gen_primary(const GenerateOptions& o) {
-  check_output_file(o.out, "--out");  // before the run, not after it
   const auto t0 = Clock::now();
-  const Scene scene = read_scene_file(o.scene);
-  print_scene_warnings(scene, "gen-primary");
-  if (!scene.generation) throw InputError(o.scene + ": gen-primary needs a [generation] table");
+  const Scene scene = open_scene(o, "gen-primary", "generation", [](const Scene& sc) { return sc.generation.has_value(); });
   Simulation sim = simulation_from_scene(scene);
   std::mt19937_64 rng(scene.generation->seed);
   fill_random(sim, *scene.generation, rng);
@@ -136,11 +144,8 @@ void gen_primary(const GenerateOptions& o) {
 }
 
 void copy_settle(const GenerateOptions& o) {
-  check_output_file(o.out, "--out");  // before the run, not after it
   const auto t0 = Clock::now();
-  const Scene scene = read_scene_file(o.scene);
-  print_scene_warnings(scene, "copy-settle");
-  if (!scene.copy) throw InputError(o.scene + ": copy-settle needs a [copy] table");
+  const Scene scene = open_scene(o, "copy-settle", "copy", [](const Scene& sc) { return sc.copy.has_value(); });
   Simulation sim = load_under_scene(o.in, scene, WallPositions::FromScene);  // the tiles need the scene's container
   const auto [lo, hi] = sphere_bounds(sim.particles);
   const Vec3 period = scene.copy->spacing.value_or(hi - lo);
@@ -160,11 +165,8 @@ void copy_settle(const GenerateOptions& o) {
 }
 
 void compact(const GenerateOptions& o) {
-  check_output_file(o.out, "--out");  // before the run, not after it
   const auto t0 = Clock::now();
-  const Scene scene = read_scene_file(o.scene);
-  print_scene_warnings(scene, "compact");
-  if (!scene.compact) throw InputError(o.scene + ": compact needs a [compact] table");
+  const Scene scene = open_scene(o, "compact", "compact", [](const Scene& sc) { return sc.compact.has_value(); });
   const CompactSpec& c = *scene.compact;
   Simulation sim = load_under_scene(o.in, scene, WallPositions::FromCheckpoint);
   sim.dt = choose_time_step(sim, scene.simulation);
@@ -199,7 +201,7 @@ void compact(const GenerateOptions& o) {
   double k_max = 0, c_max = 0;
   servo_constants(sim, k_max, c_max);
   const std::int64_t max_steps = static_cast<std::int64_t>(std::ceil(c.max_time / sim.dt));
-  const std::int64_t check = std::max<std::int64_t>(1, std::llround(c.settle.check_every / sim.dt));
+  const std::int64_t check = c.settle.check_every.steps(sim.dt);
   Progress progress("compact", max_steps, o.quiet);
   std::int64_t steps = 0;
   bool done = false;

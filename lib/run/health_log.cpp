@@ -12,9 +12,9 @@ namespace dem {
 
 std::string health_path(const std::string& out) { return beside_output(out, ".health.csv"); }
 
-std::int64_t health_interval(std::int64_t cli_steps, double scene_seconds, double stage_duration, double dt) {
-  if (cli_steps > 0) return cli_steps;
-  if (scene_seconds > 0) return std::max<std::int64_t>(1, std::llround(scene_seconds / dt));
+std::int64_t health_interval(const Interval& cli, const Interval& scene, double stage_duration, double dt) {
+  if (cli.given()) return cli.steps(dt);
+  if (scene.given()) return scene.steps(dt);
   return std::max<std::int64_t>(kMinDefaultHealthEvery, std::llround(stage_duration / 100 / dt));
 }
 

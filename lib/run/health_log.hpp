@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/interval.hpp"
 #include "io/csv_series.hpp"
 #include "run/wall_log.hpp"
 #include "sim/health.hpp"
@@ -17,11 +18,11 @@ namespace dem {
 // The health log that belongs to an output path: "x.h5" -> "x.health.csv".
 std::string health_path(const std::string& out);
 
-// Steps between health rows: `cli_steps` if > 0 (run-stage --health-every), else the stage's
-// health_every [s] if > 0, else a hundredth of the stage but at least kMinDefaultEvery steps (a row
+// Steps between health rows: `cli` if given (run-stage --health-every), else the stage's
+// health_every if given, else a hundredth of the stage but at least kMinDefaultEvery steps (a row
 // costs about one step: bench/results/health.md).
 constexpr std::int64_t kMinDefaultHealthEvery = 500;
-std::int64_t health_interval(std::int64_t cli_steps, double scene_seconds, double stage_duration, double dt);
+std::int64_t health_interval(const Interval& cli, const Interval& scene, double stage_duration, double dt);
 
 class HealthLog {
  public:

@@ -16,7 +16,7 @@ SettleResult settle(Simulation& sim, const SettleSpec& spec, const std::string& 
   if (!(sim.params.gravity.norm() > 0)) throw InputError("settling needs gravity: simulation.gravity is zero");
   if (sim.particles.size() == 0) return r;
   const std::int64_t max_steps = static_cast<std::int64_t>(std::ceil(spec.max_time / sim.dt));
-  const std::int64_t check = std::max<std::int64_t>(1, std::llround(spec.check_every / sim.dt));
+  const std::int64_t check = spec.check_every.steps(sim.dt);
   Progress progress(label, max_steps, quiet);
   while (r.steps < max_steps) {
     sim.advance();

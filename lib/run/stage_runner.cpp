@@ -184,14 +184,14 @@ void run_stage(const StageOptions& o) {
   const std::string restart_file = restart_path(o.out);
   // Every output is checked before anything runs: an unwritable one fails now, not after the run.
   check_output_file(o.out, "--out");
-  if (o.checkpoint_every > 0 || o.checkpoint_minutes > 0) check_output_file(restart_file, "--out (its periodic checkpoint)");
+  if (o.checkpoint_every.given() || o.checkpoint_minutes > 0) check_output_file(restart_file, "--out (its periodic checkpoint)");
   check_output_dir(o.vtk_dir, "--vtk");
   check_output_file(o.wall_forces, "--wall-forces");
   check_output_file(o.track, "--track");
   const std::string health_file = health_path(o.out);
   check_output_file(health_file, "--out (its health log)");
   const std::string energy_file = energy_path(o.out);
-  if (o.energy_every > 0 || stage->energy_every > 0) check_output_file(energy_file, "--out (its energy log)");
+  if (o.energy_every.given() || stage->energy_every.given()) check_output_file(energy_file, "--out (its energy log)");
   const std::string walls_fingerprint = scene.walls_fingerprint();
   Simulation sim;
   CheckpointMeta meta;
@@ -257,8 +257,8 @@ void run_stage(const StageOptions& o) {
   servo_constants(sim, k_max, c_max);
   const std::int64_t resume_step = sim.step > run.stage_start_step ? sim.step : -1;
   // The track first: a missing id is an error before any file is opened.
-  ParticleTrack track(o.track, o.track_ids, sim, o.track_every, resume_step);
-  WallLog wall_log(o.wall_forces, sim.walls, o.wall_forces_every, resume_step);
+  ParticleTrack track(o.track, o.track_ids, sim, o.track_every.steps(sim.dt), resume_step);
+  WallLog wall_log(o.wall_forces, sim.walls, o.wall_forces_every.steps(sim.dt), resume_step);
   const std::int64_t health_every = health_interval(o.health_every, stage->health_every, stage->duration, sim.dt);
   HealthLog health(health_file, sim.walls, health_every, run.stage_steps, resume_step, run.stage_start_bonds, o.quiet);
   const std::int64_t energy_every = energy_interval(o.energy_every, stage->energy_every, sim.dt);
@@ -288,8 +288,7 @@ void run_stage(const StageOptions& o) {
   const StopOnSignal stop;
   try {
     if (resume_step < 0) track.record(sim, 0, true);  // the state at the stage start
-    const std::int64_t interval =
-        stage->output_every > 0 ? std::max<std::int64_t>(1, std::llround(stage->output_every / sim.dt)) : run.stage_steps;
+    const std::int64_t interval = stage->output_every.given() ? stage->output_every.steps(sim.dt) : run.stage_steps;
     auto maybe_frame = [&]() {
       const std::int64_t s = sim.step - run.stage_start_step;
       if (s % interval == 0 || s == run.stage_steps) {
@@ -307,7 +306,8 @@ void run_stage(const StageOptions& o) {
     // (contact_forces_at_state), checkpoints keep keys, springs and bonds.
     sim.params.keep_pair_results = false;
     const std::int64_t end = run.stage_start_step + run.stage_steps;
-    const bool periodic = o.checkpoint_every > 0 || o.checkpoint_minutes > 0;
+    const bool periodic = o.checkpoint_every.given() || o.checkpoint_minutes > 0;
+    const std::int64_t checkpoint_every = o.checkpoint_every.steps(sim.dt);
     auto last_checkpoint = std::chrono::steady_clock::now();
     std::int64_t checkpoint_step = have_checkpoint ? sim.step : -1;
     // For the summary: the particle-steps and wall time of this process's part of the stage.
@@ -340,7 +340,7 @@ void run_stage(const StageOptions& o) {
       energy.record(sim, done, sim.step == end);
       progress.update(done, sim.time);
       if (sim.step == end) break;
-      const bool by_steps = o.checkpoint_every > 0 && done % o.checkpoint_every == 0;
+      const bool by_steps = checkpoint_every > 0 && done % checkpoint_every == 0;
       // The clock is read every 64 steps only (as Progress does).
       const bool by_time = o.checkpoint_minutes > 0 && (done & 63) == 0 &&
                            std::chrono::duration<double>(std::chrono::steady_clock::now() - last_checkpoint).count() >= 60 * o.checkpoint_minutes;

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "core/interval.hpp"
+
 namespace dem {
 
 struct StageOptions {
@@ -13,16 +15,16 @@ struct StageOptions {
   std::string in;     // input checkpoint
   std::string out;    // output checkpoint, written when the stage completes
   std::string vtk_dir;               // VTK frames and .pvd series; empty = none
-  std::int64_t checkpoint_every = 0; // steps between periodic checkpoints; 0 = none
+  Interval checkpoint_every;          // between periodic checkpoints; not given = none
   double checkpoint_minutes = 30;    // wall-clock minutes between periodic checkpoints; 0 = none
   bool restart = false;              // resume from the periodic checkpoint if there is one
   std::string wall_forces;           // per-wall force and torque CSV; empty = none
-  std::int64_t wall_forces_every = 100;  // steps between its rows
+  Interval wall_forces_every = steps(100);  // between its rows
   std::string track;                 // tracked particles CSV; empty = none
   std::vector<std::int64_t> track_ids;   // their ids
-  std::int64_t track_every = 100;        // steps between its rows
-  std::int64_t health_every = 0;         // steps between health rows (OUT with .health.csv); 0 = the scene's
-  std::int64_t energy_every = 0;         // steps between energy rows (OUT with .energy.csv); 0 = the scene's (none without)
+  Interval track_every = steps(100);        // between its rows
+  Interval health_every;  // between health rows (OUT with .health.csv); not given = the scene's
+  Interval energy_every;  // between energy rows (OUT with .energy.csv); not given = the scene's (none without)
   bool quiet = false;
   std::string command;  // the command line as given, for the resume command printed on Ctrl-C
 };

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "contact/normal_laws.hpp"
+#include "core/interval.hpp"
 #include "core/types.hpp"
 #include "forces/fluid.hpp"
 #include "scene/region.hpp"
@@ -36,12 +37,12 @@ struct WallSpec {
 };
 
 // Stop criterion for settling under gravity: mean kinetic energy per particle below
-// `ke_ratio` x (mean mass x |g| x mean diameter), checked every `check_every` seconds, or
+// `ke_ratio` x (mean mass x |g| x mean diameter), checked every `check_every` (seconds, or "N steps"), or
 // `max_time` seconds of simulated time at most.
 struct SettleSpec {
   double ke_ratio = 1e-4;
   double max_time = 1.0;  // [s]
-  double check_every = 0.01;  // [s]
+  Interval check_every = seconds(0.01);
 };
 
 // One sphere placed at a given position before the random ones ([[generation.place]]).
@@ -182,10 +183,10 @@ struct FibreSpec {
 struct StageSpec {
   std::string name;
   double duration = 0;      // [s]
-  double output_every = 0;  // VTK frame cadence [s]; 0 = first and last frame only
+  Interval output_every;  // VTK frame cadence; not given = first and last frame only
   std::optional<Vec3> gravity;  // this stage's gravity [m/s^2]; none: [simulation] gravity
-  double energy_every = 0;  // energy log cadence [s] (run/energy_log.hpp); 0 = none
-  double health_every = 0;  // health log cadence [s] (run/health_log.hpp); 0 = a hundredth of the stage, at least 500 steps
+  Interval energy_every;  // energy log cadence (run/energy_log.hpp); not given = none
+  Interval health_every;  // health log cadence (run/health_log.hpp); not given = a hundredth of the stage, at least 500 steps
   std::vector<ActionSpec> actions;  // applied in order at the start of the stage
   std::vector<MotionSpec> motions;  // wall motions during the stage (others stay fixed)
   std::vector<ServoSpec> servos;    // servo-controlled wall groups
