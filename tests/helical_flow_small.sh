@@ -16,7 +16,8 @@
 #    (the ledger's, exact for the steps, eq. P37) equals the report's ∫ T ω dt (trapezoids over the
 #    wall log's rows every 50 steps) within TOL_WORK below, and it equals the potential and kinetic
 #    energy gained plus what friction and damping dissipated plus the elastic energy stored since,
-#    within 1 % of the energy scale at every row (the bound, as the other energy tests).
+#    within 1 % of the energy scale at every row (the bound, as the other energy tests)
+#    and within 1 % of the work at the end; over half the work is dissipated.
 set -eu
 bin=$1 src=$2 py=$3 root=$(dirname "$2")
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
@@ -67,14 +68,16 @@ held = sum(float(last[k]) - float(first[k]) for k in
            ("kinetic_translation_J", "kinetic_rotation_J", "potential_J", "elastic_normal_J", "elastic_tangential_J"))
 lost = sum(float(last[k]) for k in ("damping_normal_J", "friction_J", "global_damping_J", "rolling_J"))
 # The report's work less the ledger's: the trapezoids over rows every 50 steps against the exact
-# sum over the steps (measured below 1 %); 5 % still fails a drive work off by a sign, a factor
-# or a wall left out.
+# sum over the steps (measured 1.8 %: 128.4 J against 130.7 J); 5 % still fails a drive work off
+# by a sign, a factor or a wall left out.
 TOL_WORK = 0.05
+error_end = float(last["balance_error_J"])
 checks += [
     ("energy log: worst |error|/scale %.3g (< 0.01)" % worst, worst < 0.01),
     ("drive work: ledger %.4g J, report %.4g J (within %g)" % (ledger_work, spin["work"], TOL_WORK),
      abs(ledger_work / spin["work"] - 1) < TOL_WORK),
-    ("power balance: work %.4g J = held %.4g J + dissipated %.4g J" % (ledger_work, held, lost), lost > 0.5 * ledger_work),
+    ("power balance: work %.4g J = gained since the first row %.4g J + dissipated %.4g J; balance error at the end %.3g J"
+     " (< 1 %% of the work)" % (ledger_work, held, lost, error_end), lost > 0.5 * ledger_work and abs(error_end) < 0.01 * ledger_work),
 ]
 for name, ok in checks:
     print(("ok   " if ok else "FAIL ") + name)
