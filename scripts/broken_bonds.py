@@ -17,7 +17,7 @@ import matplotlib  # noqa: E402
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
-from plot_health import read_health  # noqa: E402
+from run_log_figure import read_columns  # noqa: E402
 from post_table import save_atomically, write_csv  # noqa: E402
 
 
@@ -31,7 +31,7 @@ def broken_fraction(c):
 
 
 def main(health_csv: str, out_csv: str, png_path: str) -> None:
-    t, intact, broken, fraction = broken_fraction(read_health(health_csv))
+    t, intact, broken, fraction = broken_fraction(read_columns(health_csv))
     if not np.any(intact + broken > 0):
         sys.exit(f"{health_csv}: no bonds in this stage (a stage action \"bond\" makes them)")
     write_csv(out_csv, ["time_s", "bonds_intact", "bonds_broken", "broken_fraction"],

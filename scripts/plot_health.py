@@ -1,16 +1,8 @@
 #!/usr/bin/env python3
 """Plot run-stage's health log (OUT.health.csv) to PNG: energies, contacts and coordination, the
 largest overlap and broken bonds, and the force on each wall, against simulated time."""
-import csv
-import sys
-
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-from post_table import save_atomically  # noqa: E402
-
+import numpy as np
+from run_log_figure import log_figure, plot_main, read_columns, save_log_figure
 
 
 def counts_beside(ax, t, series, ylabel: str) -> None:
@@ -22,23 +14,11 @@ def counts_beside(ax, t, series, ylabel: str) -> None:
     lines = ax.get_lines() + twin.get_lines()
     ax.legend(lines, [line.get_label() for line in lines], fontsize=8)
 
-def read_health(csv_path: str):
-    """The columns of a health log by name, as float arrays."""
-    with open(csv_path) as f:
-        rows = list(csv.reader(f))
-    header, body = rows[0], rows[1:]
-    if not body:
-        sys.exit(f"{csv_path}: no rows yet")
-    cols = {}
-    for k, name in enumerate(header):
-        cols[name] = np.array([float(r[k]) if r[k] != "" else np.nan for r in body])
-    return cols
-
 
 def main(csv_path: str, png_path: str) -> None:
-    c = read_health(csv_path)
+    c = read_columns(csv_path)
     t = c["time_s"]
-    fig, axes = plt.subplots(2, 2, figsize=(10, 7), dpi=110, sharex=True)
+    fig, axes = log_figure(2, 2, (10, 7))
 
     ax = axes[0, 0]
     ax.plot(t, c["kinetic_translation_J"], label="kinetic, translation")
@@ -78,13 +58,8 @@ def main(csv_path: str, png_path: str) -> None:
     if walls:
         ax.legend(fontsize=8, ncol=2)
 
-    steps = c["step"]
-    fig.suptitle(f"{csv_path}: steps {int(steps[0])} to {int(steps[-1])}, time step {c['dt_s'][-1]:.3g} s", fontsize=9)
-    save_atomically(fig, png_path)
-    plt.close(fig)
+    save_log_figure(fig, csv_path, c, png_path, f", time step {c['dt_s'][-1]:.3g} s")
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 3:
-        sys.exit("usage: plot_health.py RUN.health.csv OUT.png")
-    main(sys.argv[1], sys.argv[2])
+    plot_main("plot_health.py", "health", main)

@@ -17,8 +17,9 @@ std::int64_t energy_interval(const Interval& cli, const Interval& scene, double 
 namespace {
 
 const char* const kHeader =
-    "step,time_s,kinetic_translation_J,kinetic_rotation_J,potential_J,elastic_normal_J,elastic_tangential_J,damping_normal_J,"
-    "friction_J,global_damping_J,bonds_released_J,work_walls_J,work_prescribed_J,balance_error_J,balance_error_relative\n";
+    "step,time_s,kinetic_translation_J,kinetic_rotation_J,potential_J,elastic_normal_J,elastic_tangential_J,elastic_rolling_J,"
+    "elastic_fibres_J,damping_normal_J,friction_J,global_damping_J,rolling_J,bonds_released_J,fibres_released_J,work_walls_J,"
+    "work_prescribed_J,work_fluid_J,inserted_J,balance_error_J,balance_error_relative\n";
 
 }  // namespace
 
@@ -31,10 +32,12 @@ void EnergyLog::write(const Simulation& sim) {
   const EnergyState& e = l.now;
   const EnergyTotals& t = l.totals;
   const double scale = l.scale();
-  std::fprintf(csv_.file(), "%lld,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.6g,%.6g\n",
+  std::fprintf(csv_.file(),
+               "%lld,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.6g,%.6g\n",
                static_cast<long long>(sim.step), sim.time, e.kinetic_translation, e.kinetic_rotation, e.potential, e.elastic_normal,
-               e.elastic_tangential, t.damping_normal, l.friction(), t.global_damping, t.released, t.work_walls, t.work_prescribed,
-               l.error(), scale > 0 ? l.error() / scale : 0.0);
+               e.elastic_tangential, e.elastic_rolling, e.elastic_fibres, t.damping_normal, l.friction(), t.global_damping, l.rolling(),
+               t.released, t.fibres_released, t.work_walls, t.work_prescribed, t.work_fluid, t.inserted, l.error(),
+               scale > 0 ? l.error() / scale : 0.0);
   csv_.flush();
 }
 

@@ -326,7 +326,10 @@ void run_stage(const StageOptions& o) {
     while (sim.step < end) {
       // Particles due by now, before the step (a periodic checkpoint is written after a step, so a
       // resumed run makes this event first, as the uninterrupted one does).
-      if (!inserts.empty()) insert_due(sim, inserts, sim.step - run.stage_start_step, sim.time - run.stage_start_time);
+      if (!inserts.empty()) {
+        const std::size_t before = sim.particles.size();
+        if (insert_due(sim, inserts, sim.step - run.stage_start_step, sim.time - run.stage_start_time)) sim.account_inserted(before);
+      }
       particle_steps += static_cast<double>(sim.particles.size());
       checks.guard([&] { sim.advance(); });
       // Servo speeds for the next step from this step's forces: the periodic checkpoint holds them as

@@ -27,27 +27,34 @@ double FixedSum::value() const { return std::ldexp(static_cast<double>(sum_), -k
 
 double EnergyLedger::scale() const {
   return reference.kinetic_translation + reference.kinetic_rotation + std::abs(reference.elastic_normal) + reference.elastic_tangential +
-         totals.work_abs + std::abs(now.potential - reference.potential);
+         reference.elastic_rolling + reference.elastic_fibres + totals.work_abs + std::abs(now.potential - reference.potential);
 }
 
 std::vector<double> EnergyLedger::values() const {
   const EnergyState* states[] = {&reference, &now};
   std::vector<double> v{have_reference ? 1.0 : 0.0};
   for (const EnergyState* s : states)
-    v.insert(v.end(), {s->kinetic_translation, s->kinetic_rotation, s->potential, s->elastic_normal, s->elastic_tangential});
+    v.insert(v.end(), {s->kinetic_translation, s->kinetic_rotation, s->potential, s->elastic_normal, s->elastic_tangential,
+                       s->elastic_rolling, s->elastic_fibres});
   const EnergyTotals& t = totals;
-  v.insert(v.end(), {t.damping_normal, t.tangential_work, t.global_damping, t.released, t.work_walls, t.work_prescribed, t.work_abs});
+  v.insert(v.end(), {t.damping_normal, t.tangential_work, t.global_damping, t.released, t.work_walls, t.work_prescribed, t.work_abs,
+                     t.work_fluid, t.rolling_work, t.fibres_released, t.inserted});
   return v;
 }
 
 void EnergyLedger::from_values(const std::vector<double>& v) {
-  if (v.size() != 18) throw std::invalid_argument("holds " + std::to_string(v.size()) + " values, not 18");
+  if (v.size() != kValues)
+    throw std::invalid_argument("holds " + std::to_string(v.size()) + " values, not " + std::to_string(kValues) +
+                                " (written by an older run-stage: run the stage again from its start)");
   std::size_t k = 0;
   have_reference = v[k++] != 0;
   for (EnergyState* s : {&reference, &now})
-    for (double* x : {&s->kinetic_translation, &s->kinetic_rotation, &s->potential, &s->elastic_normal, &s->elastic_tangential}) *x = v[k++];
+    for (double* x : {&s->kinetic_translation, &s->kinetic_rotation, &s->potential, &s->elastic_normal, &s->elastic_tangential,
+                      &s->elastic_rolling, &s->elastic_fibres})
+      *x = v[k++];
   EnergyTotals& t = totals;
-  for (double* x : {&t.damping_normal, &t.tangential_work, &t.global_damping, &t.released, &t.work_walls, &t.work_prescribed, &t.work_abs})
+  for (double* x : {&t.damping_normal, &t.tangential_work, &t.global_damping, &t.released, &t.work_walls, &t.work_prescribed, &t.work_abs,
+                    &t.work_fluid, &t.rolling_work, &t.fibres_released, &t.inserted})
     *x = v[k++];
 }
 
@@ -61,8 +68,56 @@ namespace {
 
 // What one contact adds to the step's sums.
 struct ContactTerms {
-  FixedSum damping, tangential_work, released, walls, elastic, springs;
+  FixedSum damping, tangential_work, released, walls, elastic, springs, rolling_work, rolling_springs;
 };
+
+// eq. P41-P42: a contact's rolling couple M (on i; -M on j or the wall) works on the relative spin
+// `w_mean` = w̄_i - w̄_j (a wall: w̄_i - its spin). An epsd2 spring holds ½ |M|² / k_r, taken at the
+// half step as P31 does, less ½ M · (w_i - w_j)^{n+1/2} Δt (`w_now`): the spring turns back by
+// k_r (w_i - w_j) Δt in the next step, so the change of that figure is exactly -M · w̄ Δt while the
+// spring holds.
+void account_rolling(const PairParams& q, const Vec3& couple, const Vec3& w_mean, const Vec3& w_now, double u, double r_eff, double dt,
+                     ContactTerms& t) {
+  if (q.rolling == RollingLaw::None) return;
+  t.rolling_work.add(couple.dot(w_mean) * dt);
+  if (q.rolling != RollingLaw::ElasticPlastic) return;  // cdt holds nothing
+  const double k_t = with_tangential_law(q, [&](auto law) {
+    LaneKinematics<double> c{};
+    c.overlap = u;
+    c.r_eff = r_eff;
+    return static_cast<double>(decltype(law)::stiffness_at(q, c));
+  });
+  t.rolling_springs.add(ElasticPlasticRolling::stored_energy(q, couple, k_t, r_eff) - 0.5 * couple.dot(w_now) * dt);
+}
+
+// eq. P43-P44: the fibres' segments. Each intact one holds ½ T² L0 / (EA) at x^n (T its tension
+// of this step's force loop) plus ½ T times its stretch over the step (the P31 form: exact for the
+// linear spring); one that broke this step releases what it held at the half step before.
+struct FibreTerms {
+  FixedSum elastic, released;
+};
+void account_fibres(const FibreSet& fibres, const std::vector<std::uint8_t>& broken_before, const Vec3* x0, const Vec3* v0, const Vec3* w0,
+                    const Particles& p, double dt, FibreTerms& t) {
+  for (std::size_t s = 0; s < fibres.segments(); ++s) {
+    const bool broke = fibres.broken[s] && s < broken_before.size() && !broken_before[s];
+    if (fibres.broken[s] && !broke) continue;
+    const int a = fibres.tie_of[s], b = a + 1, f = fibres.fibre_of[s];
+    const int ia = fibres.tie_slot[a], ib = fibres.tie_slot[b];
+    if (ia < 0 || ib < 0) continue;  // a particle removed: at a stage start, before the reference
+    const Vec3 &oa = fibres.tie_offset[a], &ob = fibres.tie_offset[b];
+    const Vec3 d = x0[ib] - x0[ia] + (ob - oa);  // the span at x^n (no periodic boundaries with fibres)
+    const double length = d.norm(), ea = fibres.modulus[f] * fibres.area[f];
+    const double tension = segment_tension(ea, fibres.rest[s], length);
+    const double e = 0.5 * tension * tension * fibres.rest[s] / ea;
+    const Vec3 dir = d / length;
+    // The stretch rate with the velocities of a half step: the tie points move with v + w x offset.
+    auto stretch = [&](const Vec3* v, const Vec3* w) { return dir.dot(v[ib] + w[ib].cross(ob) - v[ia] - w[ia].cross(oa)) * dt; };
+    if (broke)
+      t.released.add(e - 0.5 * tension * stretch(v0, w0));
+    else
+      t.elastic.add(e + 0.5 * tension * stretch(p.v.data(), p.w.data()));
+  }
+}
 
 // One contact (force `f` on i and n x f_t `tpr`; normal `n` from i towards j or the wall; overlap
 // `u` at x^n): its dashpot's and tangential forces' work with the mean velocities, its elastic
@@ -101,7 +156,8 @@ void Simulation::account_energy(bool any_fixed) {
   const Vec3 *v0 = ledger_v_.data(), *w0 = ledger_w_.data();
   auto v_mean = [&](std::size_t k) { return Vec3(0.5 * (v0[k] + p.v[k])); };
   auto w_mean = [&](std::size_t k) { return Vec3(0.5 * (w0[k] + p.w[k])); };
-  FixedSum kin_t, kin_r, potential, global, prescribed;
+  FixedSum kin_t, kin_r, potential, global, prescribed, fluid;
+  const bool has_fluid = params.fluid.on();
   for (std::size_t k = 0; k < count; ++k) {
     const double I = p.inertia(k);
     kin_t.add(0.5 * p.mass[k] * p.v[k].squaredNorm());
@@ -109,6 +165,8 @@ void Simulation::account_energy(bool any_fixed) {
     // eq. P30: at the mean of x^n and x^{n+1} = x^{n+1} - v^{n+1/2} Δt/2.
     potential.add(-p.mass[k] * params.gravity.dot(unwrapped_position(k) - 0.5 * dt * p.v[k]));
     const Vec3 v = v_mean(k), w = w_mean(k);
+    // eq. P40: the fluid's force as the force loop took it (x^n, v^{n-1/2}), times the mean velocity.
+    if (has_fluid) fluid.add(params.fluid.force(p.radius[k], p.void_fraction[k], x0[k], v0[k], params.gravity).dot(v) * dt);
     const std::uint8_t fixed = any_fixed ? p.fixed[k] : 0;
     if (fixed == kPrescribed) {
       prescribed.add(-(block_force_[k].v.dot(v) + block_torque_[k].v.dot(w)) * dt);  // eq. P37
@@ -131,6 +189,7 @@ void Simulation::account_energy(bool any_fixed) {
     account_contact(q, pairs_.sum[k].force, pairs_.sum[k].torque_per_radius, pairs_.spring[k], n, p.radius[i] + p.radius[j] - dist, r_eff,
                     pairs_.bonded[k], broke, v_mean(i) - v_mean(j), p.radius[i] * w_mean(i) + p.radius[j] * w_mean(j), p.v[i] - p.v[j],
                     v0[i] - v0[j], dt, t);
+    account_rolling(q, pairs_.rolling[k], w_mean(i) - w_mean(j), p.w[i] - p.w[j], p.radius[i] + p.radius[j] - dist, r_eff, dt, t);
   }
   for (std::size_t k = 0; k < walls_.size(); ++k) {
     const bool broke = breaks && k < ledger_wall_bonded_.size() && ledger_wall_bonded_[k] && !walls_.bonded[k];
@@ -147,12 +206,21 @@ void Simulation::account_energy(bool any_fixed) {
     const PairParams& q = materials.pair(p.material[i], walls[w].material);
     account_contact(q, f, walls_.sum[k].torque_per_radius, walls_.spring[k], n, p.radius[i] - dist, p.radius[i], walls_.bonded[k], broke,
                     v_mean(i) - v_wall, p.radius[i] * w_mean(i), p.v[i] - v_wall, v0[i] - v_wall, dt, t);
+    if (q.rolling != RollingLaw::None) {
+      // The couple -M on the wall is held by its drive, which puts in M · spin (eq. P41).
+      const Vec3& couple = walls_.rolling[k];
+      t.walls.add(couple.dot(g.spin) * dt);
+      account_rolling(q, couple, w_mean(i) - g.spin, p.w[i] - g.spin, p.radius[i] - dist, p.radius[i], dt, t);
+    }
   }
   ledger_pair_bonded_.clear();
   ledger_wall_bonded_.clear();
+  FibreTerms fibre_terms;
+  if (!fibres.empty()) account_fibres(fibres, ledger_fibre_broken_, x0, v0, w0, p, dt, fibre_terms);
 
   EnergyLedger& l = ledger;
-  l.now = EnergyState{kin_t.value(), kin_r.value(), potential.value(), t.elastic.value(), t.springs.value()};
+  l.now = EnergyState{kin_t.value(),   kin_r.value(),           potential.value(),           t.elastic.value(),
+                      t.springs.value(), t.rolling_springs.value(), fibre_terms.elastic.value()};
   if (!l.have_reference) {  // the first step accounted is the reference: its own work is not counted
     l.reference = l.now;
     l.totals = EnergyTotals{};
@@ -160,14 +228,33 @@ void Simulation::account_energy(bool any_fixed) {
     return;
   }
   EnergyTotals& s = l.totals;
-  const double walls_in = t.walls.value(), prescribed_in = prescribed.value();
+  const double walls_in = t.walls.value(), prescribed_in = prescribed.value(), fluid_in = fluid.value();
   s.damping_normal += t.damping.value();
   s.tangential_work += t.tangential_work.value();
   s.global_damping += global.value();
   s.released += t.released.value();
   s.work_walls += walls_in;
   s.work_prescribed += prescribed_in;
-  s.work_abs += std::abs(walls_in) + std::abs(prescribed_in);
+  s.work_fluid += fluid_in;
+  s.rolling_work += t.rolling_work.value();
+  s.fibres_released += fibre_terms.released.value();
+  s.work_abs += std::abs(walls_in) + std::abs(prescribed_in) + std::abs(fluid_in);
+}
+
+void Simulation::account_inserted(std::size_t first) {
+  EnergyLedger& l = ledger;
+  if (!l.on || !l.have_reference) return;  // before the reference, the reference takes them in
+  // eq. P45: each as the ledger will count it, kinetic energy at v^{n-1/2} and potential energy at
+  // x^n - v Δt/2 (the mean of x^{n-1} and x^n had it moved with v), so that its first step's
+  // change is its first step's work.
+  const Particles& p = particles;
+  FixedSum in;
+  for (std::size_t k = first; k < p.size(); ++k)
+    in.add(0.5 * p.mass[k] * p.v[k].squaredNorm() + 0.5 * p.inertia(k) * p.w[k].squaredNorm() -
+           p.mass[k] * params.gravity.dot(unwrapped_position(k) - 0.5 * dt * p.v[k]));
+  const double e = in.value();
+  l.totals.inserted += e;
+  l.totals.work_abs += std::abs(e);
 }
 
 }  // namespace dem

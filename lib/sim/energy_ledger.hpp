@@ -1,5 +1,5 @@
 #pragma once
-// The energy balance of a run (docs/physics.md eq. P29-P39), kept only when asked (run-stage's
+// The energy balance of a run (docs/physics.md eq. P29-P45), kept only when asked (run-stage's
 // energy log): each step, after the motion, a pass over the particles and contacts adds what the
 // step dissipated, released and put in, and measures what the particles and contacts hold. The
 // force loop is not touched: a run that does not ask pays one branch per step.
@@ -13,6 +13,7 @@
 //
 // Every sum is exact in fixed point (FixedSum), so the figures have the same bits whatever the
 // storage order of particles and contacts and the thread count.
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -37,6 +38,10 @@ struct EnergyTotals {
   double work_walls = 0;        // by moving walls, eq. P37
   double work_prescribed = 0;   // by what holds the prescribed particles to their motion, eq. P37
   double work_abs = 0;          // Σ |each step's input| (the scale, eq. P39)
+  double work_fluid = 0;        // by the fluid's drag, pressure gradient and buoyancy, eq. P40
+  double rolling_work = 0;      // of the rolling couples on the particles, eq. P41
+  double fibres_released = 0;   // elastic energy of fibre segments when they broke, eq. P44
+  double inserted = 0;          // kinetic + potential energy of particles inserted, eq. P45
 };
 
 // What the particles and contacts hold at the half step just reached [J].
@@ -45,7 +50,11 @@ struct EnergyState {
   double potential = 0;           // gravity, at the mean of x^n and x^{n+1} (unwrapped)
   double elastic_normal = 0;      // eq. P31, bonds included
   double elastic_tangential = 0;  // the tangential springs, ½ |f_s|² / k_t
-  double total() const { return kinetic_translation + kinetic_rotation + potential + elastic_normal + elastic_tangential; }
+  double elastic_rolling = 0;     // the rolling springs (epsd2), ½ |M|² / k_r, eq. P42
+  double elastic_fibres = 0;      // the fibres' intact segments, eq. P43
+  double total() const {
+    return kinetic_translation + kinetic_rotation + potential + elastic_normal + elastic_tangential + elastic_rolling + elastic_fibres;
+  }
 };
 
 struct EnergyLedger {
@@ -58,16 +67,22 @@ struct EnergyLedger {
   // Friction and the tangential dashpot together, eq. P34: what the tangential forces took from the
   // particles less what the springs now hold more than at the reference.
   double friction() const { return -totals.tangential_work - (now.elastic_tangential - reference.elastic_tangential); }
-  double dissipated() const { return totals.damping_normal + friction() + totals.global_damping; }
-  double input() const { return totals.work_walls + totals.work_prescribed; }
+  // Rolling resistance, eq. P42: what the couples took from the particles less what the rolling
+  // springs now hold more than at the reference.
+  double rolling() const { return -totals.rolling_work - (now.elastic_rolling - reference.elastic_rolling); }
+  double dissipated() const { return totals.damping_normal + friction() + totals.global_damping + rolling(); }
+  double released() const { return totals.released + totals.fibres_released; }
+  // Work from outside and energy brought in by inserted particles (eq. P37, P40, P45).
+  double input() const { return totals.work_walls + totals.work_prescribed + totals.work_fluid + totals.inserted; }
   // eq. P38: held + dissipated + released - input - held at the reference (0 in a closed balance).
-  double error() const { return now.total() + dissipated() + totals.released - input() - reference.total(); }
+  double error() const { return now.total() + dissipated() + released() - input() - reference.total(); }
   // eq. P39: the energy at the reference that can move (kinetic and elastic), plus the input and the
   // change in potential energy since.
   double scale() const;
 
   // The checkpoint's form (/run/energy): every double above, in a fixed order; from_values throws
-  // std::invalid_argument on a wrong count.
+  // std::invalid_argument on a wrong count (kValues).
+  static constexpr std::size_t kValues = 26;
   std::vector<double> values() const;
   void from_values(const std::vector<double>& v);
 };

@@ -54,7 +54,10 @@ void Simulation::compute_forces() {
                     block_done_,       ++force_epoch_, body,       simd_loops_on(), block_force_, block_torque_};
   const double worst_overlap = compute_contact_forces(in, choose_force_variant(materials, has_bonds()), pairs_, walls_, loads);
   // Fibres: a force source after the contacts and body forces (one serial loop over segments).
-  if (!fibres.empty()) add_fibre_forces(fibres, particles, periodic, block_force_, block_torque_);
+  if (!fibres.empty()) {
+    if (ledger.on) ledger_fibre_broken_ = fibres.broken;  // those that break now release their energy (eq. P44)
+    add_fibre_forces(fibres, particles, periodic, block_force_, block_torque_);
+  }
   pair_results_kept_ = params.keep_pair_results;
   contacts_modified();
   if (worst_overlap > params.max_overlap) report_overlap(worst_overlap);

@@ -74,6 +74,9 @@ class Simulation {
   std::int64_t step = 0;
   // The energy balance (sim/energy_ledger.hpp), kept each step while ledger.on (off by default).
   EnergyLedger ledger;
+  // Particles appended at slots [first, size()) between steps (insertion): while ledger.on, their
+  // kinetic and potential energy enter the balance as brought in (docs/physics.md eq. P45).
+  void account_inserted(std::size_t first);
 
   // One explicit step: contacts and forces at x^n with v^{n-1/2} (compute_forces), then
   // eq. 2.38-2.47.
@@ -200,6 +203,7 @@ class Simulation {
   // broke this step release their energy).
   std::vector<Vec3> ledger_x_, ledger_v_, ledger_w_;
   std::vector<std::uint8_t> ledger_pair_bonded_, ledger_wall_bonded_;
+  std::vector<std::uint8_t> ledger_fibre_broken_;  // the fibre segments broken before the force loop
 };
 
 }  // namespace dem

@@ -1,7 +1,8 @@
 # Impact (thesis §4.2): block B2 (1,280 spheres) thrown at 5 m/s into the bonded block B1 (9,594).
 #   make -f Makefile.cases impact   cast both blocks (about 1 minute on two cores), run the impact
 #                                   (20,000 steps of 6.43e-6 s; 13 s on two threads), fragments, broken bonds,
-#                                   and PNG renders of four instants (dem-render under xvfb-run)
+#                                   the energy balance, and PNG renders of four instants (dem-render
+#                                   under xvfb-run)
 IMP_DIR := $(OUT)/impact
 IMP_GEN := workflows/impact/generate.toml
 IMP_SCENE := workflows/impact/scene.toml
@@ -17,9 +18,10 @@ $(IMP_DIR)/b1.h5: $(IMP_GEN) $(BIN)/gen-primary
 $(IMP_DIR)/blocks.h5: $(IMP_GEN) $(IMP_DIR)/b1.h5 $(BIN)/run-stage
 	$(BIN)/run-stage --scene $(IMP_GEN) --stage cast --in $(IMP_DIR)/b1.h5 --out $@
 
-# A VTK frame every 10 ms (velocity; displacement from the start: the deformed shape) and the
-# health log every 100 steps (the broken bonds over time).
-$(IMP_DIR)/impact.h5 $(IMP_DIR)/impact.health.csv $(IMP_DIR)/vtk/impact_particles.pvd &: $(IMP_SCENE) $(IMP_DIR)/blocks.h5 $(BIN)/run-stage
+# A VTK frame every 10 ms (velocity; displacement from the start: the deformed shape), the
+# health log every 100 steps (the broken bonds over time) and the energy log (the scene's
+# energy_every: every 100 steps).
+$(IMP_DIR)/impact.h5 $(IMP_DIR)/impact.health.csv $(IMP_DIR)/impact.energy.csv $(IMP_DIR)/vtk/impact_particles.pvd &: $(IMP_SCENE) $(IMP_DIR)/blocks.h5 $(BIN)/run-stage
 	$(BIN)/run-stage --scene $(IMP_SCENE) --stage impact --in $(IMP_DIR)/blocks.h5 --out $(IMP_DIR)/impact.h5 \
 	  --vtk $(IMP_DIR)/vtk --health-every 100
 
@@ -30,8 +32,12 @@ $(IMP_DIR)/fragments.csv $(IMP_DIR)/fragments.vtu &: $(IMP_DIR)/impact.h5 $(BIN)
 $(IMP_DIR)/fragments.png: $(IMP_DIR)/fragments.csv scripts/plot_fragments.py scripts/post_table.py
 	$(PYTHON) scripts/plot_fragments.py $< $@
 
-$(IMP_DIR)/broken_bonds.csv $(IMP_DIR)/broken_bonds.png &: $(IMP_DIR)/impact.health.csv scripts/broken_bonds.py scripts/plot_health.py
+$(IMP_DIR)/broken_bonds.csv $(IMP_DIR)/broken_bonds.png &: $(IMP_DIR)/impact.health.csv scripts/broken_bonds.py scripts/run_log_figure.py
 	$(PYTHON) scripts/broken_bonds.py $< $(IMP_DIR)/broken_bonds.csv $(IMP_DIR)/broken_bonds.png
+
+# Where B2's kinetic energy goes: held, dissipated (dashpot, friction) and released by broken bonds.
+$(IMP_DIR)/energy.png: $(IMP_DIR)/impact.energy.csv scripts/plot_energy.py scripts/run_log_figure.py scripts/post_table.py
+	$(PYTHON) scripts/plot_energy.py $< $@
 
 # Four instants coloured by speed [0, 5 m/s]: in perspective, and cut by the mid-plane of B2's
 # path (y = 0.3 m, seen from +y).
@@ -47,6 +53,6 @@ $(IMP_DIR)/render/cut_%.png: $(IMP_DIR)/vtk/impact_particles.pvd $(BIN)/dem-rend
 impact: build
 	@$(MAKE) --no-print-directory -f $(SELF) impact-outputs
 	@echo "impact: VTK series $(IMP_DIR)/vtk/impact_particles.pvd (velocity, displacement), fragments $(IMP_DIR)/fragments.csv/.png/.vtu"
-	@echo "impact: broken bonds $(IMP_DIR)/broken_bonds.csv/.png, renders $(IMP_DIR)/render/*.png"
-impact-outputs: $(IMP_DIR)/fragments.png $(IMP_DIR)/broken_bonds.png $(IMP_PNGS)
+	@echo "impact: broken bonds $(IMP_DIR)/broken_bonds.csv/.png, energy balance $(IMP_DIR)/impact.energy.csv and energy.png, renders $(IMP_DIR)/render/*.png"
+impact-outputs: $(IMP_DIR)/fragments.png $(IMP_DIR)/broken_bonds.png $(IMP_DIR)/energy.png $(IMP_PNGS)
 CASES += impact
