@@ -4,11 +4,17 @@
 # to 10 % axial strain without fibres and with 1 % of fibres by volume, from the same consolidated
 # sample. Checks, on the triaxial report of the wall log (scripts/triaxial_report.py):
 # 1. the side walls held sigma_3: at the peak within 5 % of 100 kPa (the servos' PI control; a
-#    lag would change the strength the test compares);
+#    lag would change the strength the test compares). Measured within 2.1 % on six packings.
 # 2. the reinforced sample is stronger: its peak deviator stress exceeds the unreinforced one by at
-#    least GAIN_MIN. The bound comes from the scatter of the peak with the packing (workflows/
-#    fibre-soil/README.md, "Checks"): fills with five other seeds gave unreinforced peaks within
-#    SCATTER of each other, so a gain beyond it is no chance of the packing.
+#    least 15 %. Over six packings (fill seeds 11-16, this scene otherwise) the gain was 33.6 to
+#    58.1 % (mean 43 %, standard deviation 8 %), and the first of them, with the round-off of the
+#    ties' rotation changed (sin and cos by their series, lib/forces/fibres.cpp), 29.4 % instead of
+#    42.3 %: the sheared packing is chaotic. 15 % is half the smallest gain seen and more than
+#    three deviations below the mean. Without the fibres' force the two runs would differ by the
+#    chaos of one packing only:
+#    the same packing sheared at half the rate peaked 2.2 % lower (workflows/fibre-soil/README.md,
+#    "Quasi-static"); the packings' own peaks spread 88.5 to 112.9 kPa, which the paired
+#    comparison (same packing, with and without fibres) removes.
 set -euo pipefail
 bin=$1 src=$(cd "$2" && pwd) py=$3
 case_dir=$src/../workflows/fibre-soil
@@ -25,7 +31,7 @@ done
 "$py" - "$tmp/summary.csv" <<'PY'
 import csv, sys
 rows = {r["run"]: r for r in csv.DictReader(open(sys.argv[1]))}
-GAIN_MIN = 0.10
+GAIN_MIN = 0.15
 fail = []
 for run, r in rows.items():
     s3 = float(r["sigma_3_at_peak_Pa"])

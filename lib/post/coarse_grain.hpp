@@ -9,8 +9,9 @@
 //                   (pair: f on i, l = x_j - x_i from x_i; wall: f on the particle, l from its
 //                   centre to the contact point; fibre segment: T e on a, l = x_b - x_a from x_a,
 //                   eq. P64 spread as P27, docs/physics.md eq. P65), force index first and
-//                   tension positive as in post/stress.hpp. It satisfies momentum balance exactly: away from walls,
-//                   div sigma_c = - sum_p phi(r - x_p) F_p (F_p the particles' contact forces).
+//                   tension positive as in post/stress.hpp. It satisfies momentum balance
+//                   exactly: away from walls, div sigma_c = - sum_p phi(r - x_p) F_p (F_p the
+//                   particles' contact and fibre forces).
 //   kinetic stress  sigma_k(r) = -sum_p m_p (v_p - V(r))(x)(v_p - V(r)) phi(r - x_p)    [Pa]
 //   displacement    U(r): the value at r of the linear field u = a + G (x - r) that best fits
 //                   the particles' displacements, weighted by m_p phi(r - x_p) (least squares;
