@@ -9,6 +9,7 @@
 #include <numbers>
 #include <random>
 
+#include "forces/fibres.hpp"
 #include "post/coarse_grain.hpp"
 #include "post/displacement.hpp"
 #include "post/kernel.hpp"
@@ -255,6 +256,62 @@ TEST(CoarseGrain, SameBitsForAnyThreadCount) {
     const bool same_u = one.displacement[node] == two.displacement[node] || (!one.displacement[node].allFinite() && !two.displacement[node].allFinite());
     ASSERT_TRUE(same_u);
   }
+}
+
+// A fibre of known tension between two particles (docs/physics.md eq. P65): T = EA/L0 (L - L0)
+// from the tie points' distance L, set up by hand. The grid stress at every node is
+// T e (x) l times the kernel's integral along the branch vector (the kernel's closed form,
+// checked against quadrature in Kernel.SegmentIntegralMatchesQuadrature) to round-off (1e-12 of
+// the peak); it has the bits of a pair contact carrying its force T e with the same branch vector (the same
+// spreading, written once); and its integral over space, the node sum times h^3, equals the
+// Love-Weber total T e (x) l. That sum samples the kernel at h = w/4; its sampling error for this
+// smooth, compactly supported kernel was measured at 5e-10 of the total; 1e-6 is asked.
+TEST(CoarseGrain, FibreSegmentSpreadAsAContactOfItsTension) {
+  Particles p;
+  const double a = 1.5e-3;
+  p.add(0, Vec3(0.010, 0.010, 0.010), a, 2500, 0);
+  p.add(1, Vec3(0.016, 0.012, 0.0085), a, 2500, 0);
+  p.add(2, Vec3(0.022, 0.022, 0.022), a, 2500, 0);  // untied: no stress from it
+  const Vec3 off_a(0.0002, -0.0004, 0.0003), off_b(-0.0003, 0.0001, 0.0002);
+  const Vec3 span = (p.x[1] + off_b) - (p.x[0] + off_a);
+  const double length = span.norm(), rest = length * (1 - 2e-3), area = 3e-8, modulus = 2e9;
+  FibreSet fibres;
+  fibres.add({{0, off_a}, {1, off_b}}, {rest}, area, modulus, 1e12);
+  fibres.resolve(p);
+  compute_fibre_tensions(fibres, p, PeriodicBox{});
+  const double tension = modulus * area / rest * (length - rest);
+  ASSERT_NEAR(fibres.tension[0], tension, 1e-12 * tension);
+  const FibreBranches branches = fibre_branches(p, PeriodicBox{}, fibres);
+  ASSERT_EQ(branches.size(), 1u);
+  const Vec3 l = p.x[1] - p.x[0];
+  const Mat3 total = tension * span.normalized() * l.transpose();  // eq. P64's T e (x) l
+
+  const double w = 2e-3, h = w / 4;
+  const GridSpec grid = grid_covering(Box{Vec3::Constant(0.0), Vec3::Constant(0.026)}, h);
+  const GridFields f = coarse_grain(p, ContactForceSet{}, nullptr, grid, w, &branches);
+  ContactForceSet as_contact;
+  as_contact.pair_i = {0}, as_contact.pair_j = {1};
+  as_contact.pair_force = {branches.force[0]}, as_contact.pair_normal = {l.normalized()}, as_contact.pair_bonded = {0};
+  const GridFields c = coarse_grain(p, as_contact, nullptr, grid, w);
+  const LucyKernel k(w);
+  Mat3 sum = Mat3::Zero();
+  double worst = 0;
+  for (long kk = 0; kk < grid.n[2]; ++kk)
+    for (long j = 0; j < grid.n[1]; ++j)
+      for (long i = 0; i < grid.n[0]; ++i) {
+        const std::size_t node = i + grid.n[0] * (j + grid.n[1] * kk);
+        const Mat3 want = total * k.segment_integral(grid.node(i, j, kk) - p.x[0], l);
+        worst = std::max(worst, (f.contact_stress[node] - want).cwiseAbs().maxCoeff());
+        ASSERT_EQ(f.contact_stress[node], c.contact_stress[node]) << "node " << node;
+        sum += f.contact_stress[node];
+      }
+  sum *= h * h * h;
+  const double peak = total.cwiseAbs().maxCoeff() * k.amplitude();
+  const double integral_error = (sum - total).cwiseAbs().maxCoeff() / total.cwiseAbs().maxCoeff();
+  std::printf("fibre on the grid: T = %.6g N; worst node error %.2e of the peak; integral against T e (x) l: %.2e\n", tension, worst / peak,
+              integral_error);
+  EXPECT_LT(worst, 1e-12 * peak);
+  EXPECT_LT(integral_error, 1e-6);
 }
 
 }  // namespace

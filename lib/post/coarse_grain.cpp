@@ -74,7 +74,8 @@ struct NodeSums {
 
 }  // namespace
 
-GridFields coarse_grain(const Particles& p, const ContactForceSet& c, const std::vector<Vec3>* u, const GridSpec& grid, double width) {
+GridFields coarse_grain(const Particles& p, const ContactForceSet& c, const std::vector<Vec3>* u, const GridSpec& grid, double width,
+                        const FibreBranches* fibres) {
   if (!(width > 0)) throw std::invalid_argument("coarse_grain: the kernel width must be positive");
   if (!(grid.cell > 0) || grid.n[0] < 1 || grid.n[1] < 1 || grid.n[2] < 1) throw std::invalid_argument("coarse_grain: empty grid");
   if (u != nullptr && u->size() != p.size()) throw std::invalid_argument("coarse_grain: one displacement per particle needed");
@@ -103,8 +104,10 @@ GridFields coarse_grain(const Particles& p, const ContactForceSet& c, const std:
   for (long q = 0; q < np; ++q) zmin[q] = p.x[q][2] - cut, zmax[q] = p.x[q][2] + cut;
   const PlaneBuckets pb(zmin, zmax, grid);
 
-  // Contacts: segments x0 + s l, s in [0, 1], carrying f (x) l.
-  const long ncp = static_cast<long>(c.pairs()), nc = ncp + static_cast<long>(c.walls());
+  // Contacts: segments x0 + s l, s in [0, 1], carrying f (x) l; after the pairs and the walls,
+  // the fibres' segments, each as a pair contact (eq. P64).
+  const long ncp = static_cast<long>(c.pairs()), ncw = ncp + static_cast<long>(c.walls());
+  const long nc = ncw + (fibres != nullptr ? static_cast<long>(fibres->size()) : 0L);
   std::vector<Vec3> x0(nc), l(nc);
   std::vector<Mat3> fl(nc);
   zmin.resize(nc);
@@ -115,11 +118,16 @@ GridFields coarse_grain(const Particles& p, const ContactForceSet& c, const std:
       x0[k] = p.x[c.pair_i[k]];
       l[k] = c.branch(p, k);
       f = c.pair_force[k];
-    } else {
+    } else if (k < ncw) {
       const long w = k - ncp;
       x0[k] = p.x[c.wall_i[w]];
       l[k] = c.wall_point[w] - x0[k];
       f = c.wall_force[w];
+    } else {
+      const long s = k - ncw;
+      x0[k] = p.x[fibres->from[s]];
+      l[k] = fibres->branch[s];
+      f = fibres->force[s];
     }
     fl[k] = f * l[k].transpose();
     zmin[k] = std::min(x0[k][2], x0[k][2] + l[k][2]) - cut;

@@ -7,9 +7,11 @@
 //   velocity        V(r)   = sum_p m_p v_p phi(r - x_p) / rho(r)   (0 where rho = 0)   [m/s]
 //   contact stress  sigma_c(r) = sum_c f_c (x) l_c int_0^1 phi(r - x_c0 - s l_c) ds     [Pa]
 //                   (pair: f on i, l = x_j - x_i from x_i; wall: f on the particle, l from its
-//                   centre to the contact point), force index first and tension positive as in
-//                   post/stress.hpp. It satisfies momentum balance exactly: away from walls,
-//                   div sigma_c = - sum_p phi(r - x_p) F_p (F_p the particles' contact forces).
+//                   centre to the contact point; fibre segment: T e on a, l = x_b - x_a from x_a,
+//                   eq. P64 spread as P27, docs/physics.md eq. P65), force index first and
+//                   tension positive as in post/stress.hpp. It satisfies momentum balance
+//                   exactly: away from walls, div sigma_c = - sum_p phi(r - x_p) F_p (F_p the
+//                   particles' contact and fibre forces).
 //   kinetic stress  sigma_k(r) = -sum_p m_p (v_p - V(r))(x)(v_p - V(r)) phi(r - x_p)    [Pa]
 //   displacement    U(r): the value at r of the linear field u = a + G (x - r) that best fits
 //                   the particles' displacements, weighted by m_p phi(r - x_p) (least squares;
@@ -57,6 +59,8 @@ struct GridFields {
 // `u`: displacement per particle (NaN where not matched: left out of the fit), or null.
 // Plane by plane of nodes, each plane by one thread adding its particles and contacts in a fixed
 // order: the same bits for any thread count.
-GridFields coarse_grain(const Particles& p, const ContactForceSet& c, const std::vector<Vec3>* u, const GridSpec& grid, double width);
+// `fibres`: the fibres' segments (post/stress.hpp fibre_branches), or null: none.
+GridFields coarse_grain(const Particles& p, const ContactForceSet& c, const std::vector<Vec3>* u, const GridSpec& grid, double width,
+                        const FibreBranches* fibres = nullptr);
 
 }  // namespace dem

@@ -63,16 +63,26 @@ ParticleStress particle_stress(const Particles& p, const ContactForceSet& c) {
   return s;
 }
 
-void add_fibre_stress(const Particles& p, const PeriodicBox& box, const FibreSet& fibres, ParticleStress& s) {
+FibreBranches fibre_branches(const Particles& p, const PeriodicBox& box, const FibreSet& fibres) {
+  FibreBranches out;
   for (std::size_t k = 0; k < fibres.segments(); ++k) {
     const double t = fibres.tension[k];
     if (t == 0) continue;
     const int a = fibres.tie_of[k], b = a + 1, ia = fibres.tie_slot[a], ib = fibres.tie_slot[b];
-    const Vec3 e = fibres.span(p, box, a, b).normalized();
-    const Vec3 l = box.any() ? box.nearest(p.x[ib] - p.x[ia]) : Vec3(p.x[ib] - p.x[ia]);
-    const Mat3 half = 0.5 * t * e * l.transpose();  // eq. P64
-    s.moment[ia] += half;
-    s.moment[ib] += half;
+    out.from.push_back(ia);
+    out.to.push_back(ib);
+    out.force.push_back(t * fibres.span(p, box, a, b).normalized());
+    out.branch.push_back(box.any() ? box.nearest(p.x[ib] - p.x[ia]) : Vec3(p.x[ib] - p.x[ia]));
+  }
+  return out;
+}
+
+void add_fibre_stress(const Particles& p, const PeriodicBox& box, const FibreSet& fibres, ParticleStress& s) {
+  const FibreBranches f = fibre_branches(p, box, fibres);
+  for (std::size_t k = 0; k < f.size(); ++k) {
+    const Mat3 half = 0.5 * f.force[k] * f.branch[k].transpose();  // eq. P64
+    s.moment[f.from[k]] += half;
+    s.moment[f.to[k]] += half;
   }
 }
 

@@ -46,10 +46,20 @@ struct ParticleStress {
 // Per-particle gather over the contacts in a fixed order: the same bits for any thread count.
 ParticleStress particle_stress(const Particles& p, const ContactForceSet& c);
 
-// Adds the fibres' part (docs/physics.md eq. P64): each segment between the particles a and b,
-// with tension T (fibres.tension) along e (tie a to tie b), acts as a contact carrying T e with
-// the branch vector l = x_b - x_a of the centres: each of the two particles takes half of
-// T e (x) l. A serial loop in segment order.
+// The fibres' segments as the stress sees them (docs/physics.md eq. P64): each segment between the
+// particles a and b with tension T (fibres.tension, slack and broken ones left out) along e (tie a
+// to tie b) acts as a contact carrying T e on a, with the branch vector l = x_b - x_a of the
+// centres (nearest image across a periodic boundary). In segment order.
+struct FibreBranches {
+  std::vector<int> from, to;  // storage slots of a and b
+  std::vector<Vec3> force;    // T e, the force on a [N]
+  std::vector<Vec3> branch;   // l = x_b - x_a [m]
+  std::size_t size() const { return from.size(); }
+};
+FibreBranches fibre_branches(const Particles& p, const PeriodicBox& box, const FibreSet& fibres);
+
+// Adds the fibres' part (eq. P64): each of a segment's two particles takes half of T e (x) l.
+// A serial loop in segment order.
 void add_fibre_stress(const Particles& p, const PeriodicBox& box, const FibreSet& fibres, ParticleStress& s);
 
 // sigma_p = moment / V_p [Pa], the contact part.

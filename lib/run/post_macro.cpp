@@ -162,17 +162,19 @@ void post_macro(const PostOptions& o) {
   const double force_seconds = seconds_since(t);
   t = Clock::now();
   if (stress_wanted) ps = particle_stress(p, forces);
-  if (stress_wanted && !cur.fibres.empty()) {  // the fibres' part (eq. P64), their tensions at this state
+  FibreBranches fibre_part;  // the fibres' segments (eq. P64), their tensions at this state
+  if (stress_wanted && !cur.fibres.empty()) {
     FibreSet fibres = cur.fibres;
     compute_fibre_tensions(fibres, p, cur.periodic);
     add_fibre_stress(p, cur.periodic, fibres, ps);
+    fibre_part = fibre_branches(p, cur.periodic, fibres);
   }
   FragmentSet fragments;
   if (fragments_wanted) fragments = find_fragments(p, forces);
   const double stress_seconds = seconds_since(t);
   t = Clock::now();
   GridFields fields;
-  if (!o.grid.empty()) fields = coarse_grain(p, forces, u, grid, o.width);
+  if (!o.grid.empty()) fields = coarse_grain(p, forces, u, grid, o.width, fibre_part.size() > 0 ? &fibre_part : nullptr);
   const double grid_seconds = seconds_since(t);
   t = Clock::now();
 
