@@ -98,6 +98,11 @@ def main(path, expect_writer):
         assert sb.dtype.kind == "i" and sb.shape == (1,) and "units" not in sb.attrs, "run/stage_start_bonds"
         assert sb[0] >= 0 if expect_writer == "run-stage" else sb[0] == -1, sb[0]
 
+        # [stage.sink]: particles removed so far and their mass (0 without a sink).
+        sc, sm = f["run/sink_count"], f["run/sink_mass"]
+        assert sc.dtype.kind == "i" and sc.shape == (1,) and "units" not in sc.attrs and sc[0] >= 0, "run/sink_count"
+        assert sm.dtype.kind == "f" and sm.shape == (1,) and sm.attrs["units"] == b"kg" and sm[0] >= 0, "run/sink_mass"
+
         # The input it started from: none for gen-primary, else the --in's seal.
         seal = f["run/input_seal"][0].decode()
         if expect_writer == "gen-primary":

@@ -462,6 +462,10 @@ void run_datasets(Io& io, Run& run) {
   }
   if (io.has("/run/stage_start_bonds")) io.scalar("/run/stage_start_bonds", run.stage_start_bonds);  // added within schema 4
   if (io.has("/run/energy")) io.doubles("/run/energy", run.energy, "J");  // added within schema 4: the energy log's sums
+  if (io.has("/run/sink_count")) {  // added within schema 4: files without it had no sink
+    io.scalar("/run/sink_count", run.sink_count);
+    io.scalar("/run/sink_mass", run.sink_mass, "kg");
+  }
 }
 
 template <class Io, class P, class A>

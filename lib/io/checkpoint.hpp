@@ -30,6 +30,8 @@ struct RunInfo {
   std::vector<std::int64_t> insert_deferred;  // per [[stage.insert]]: particle-events that found no room
   std::int64_t stage_start_bonds = -1;        // intact bonds when the stage began (health log); -1 = unknown
   std::vector<double> energy;  // the energy log's ledger (EnergyLedger::values) [J]; empty: no energy log
+  std::int64_t sink_count = 0;  // [stage.sink]: particles removed so far in this stage
+  double sink_mass = 0;         // [stage.sink]: their mass [kg] (generation/sink.hpp)
 };
 
 struct CheckpointMeta {

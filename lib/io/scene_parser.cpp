@@ -1366,6 +1366,14 @@ void read_stages(TableReader& top, Scene& sc) {
       s.fluid = read_fluid(fr);
       fr.finish();
     }
+    if (const toml::table* t = r.subtable("sink")) {
+      TableReader kr(*t, top.file(), r.name("sink"));
+      SinkSpec sink;
+      sink.region = read_region(kr, "region");
+      sink.every = kr.integer_or("every", sink.every, 1, 1000000000);
+      kr.finish();
+      s.sink = sink;
+    }
     if (const toml::table* ft = r.subtable("fibres")) {
       TableReader fr(*ft, top.file(), r.name("fibres"));
       s.fibres = read_fibres(fr);

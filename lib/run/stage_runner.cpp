@@ -13,6 +13,7 @@
 #include "generation/fibre_placement.hpp"
 #include "generation/fill.hpp"
 #include "generation/insertion.hpp"
+#include "generation/sink.hpp"
 #include "io/checkpoint.hpp"
 #include "io/file_seal.hpp"
 #include "io/output_paths.hpp"
@@ -26,6 +27,7 @@
 #include "run/particle_track.hpp"
 #include "run/progress.hpp"
 #include "run/setup.hpp"
+#include "run/sink_log.hpp"
 #include "run/start_checks.hpp"
 #include "run/wall_log.hpp"
 
@@ -192,6 +194,8 @@ void run_stage(const StageOptions& o) {
   check_output_file(health_file, "--out (its health log)");
   const std::string energy_file = energy_path(o.out);
   if (o.energy_every.given() || stage->energy_every.given()) check_output_file(energy_file, "--out (its energy log)");
+  const std::string sink_file = stage->sink ? sink_path(o.out) : std::string();
+  check_output_file(sink_file, "--out (its sink log)");
   const std::string walls_fingerprint = scene.walls_fingerprint();
   Simulation sim;
   CheckpointMeta meta;
@@ -253,6 +257,9 @@ void run_stage(const StageOptions& o) {
   auto keep_insert_counts = [&]() {
     for (std::size_t k = 0; k < inserts.size(); ++k) run.insert_count[k] = inserts[k].count(), run.insert_deferred[k] = inserts[k].deferred();
   };
+  // The sink's totals so far: from the periodic checkpoint when resumed.
+  SinkTotals sunk{run.sink_count, run.sink_mass};
+  auto keep_sink = [&]() { run.sink_count = sunk.count, run.sink_mass = sunk.mass; };
   double k_max = 0, c_max = 0;
   servo_constants(sim, k_max, c_max);
   const std::int64_t resume_step = sim.step > run.stage_start_step ? sim.step : -1;
@@ -263,6 +270,7 @@ void run_stage(const StageOptions& o) {
   HealthLog health(health_file, sim.walls, health_every, run.stage_steps, resume_step, run.stage_start_bonds, o.quiet);
   const std::int64_t energy_every = energy_interval(o.energy_every, stage->energy_every, sim.dt);
   EnergyLog energy(energy_file, energy_every, resume_step);
+  SinkLog sink_log(sink_file, resume_step);
   sim.ledger = EnergyLedger{};
   sim.ledger.on = energy.active();
   if (sim.ledger.on && !run.energy.empty()) {  // resumed: the sums where the periodic checkpoint left them
@@ -288,6 +296,7 @@ void run_stage(const StageOptions& o) {
   const StopOnSignal stop;
   try {
     if (resume_step < 0) track.record(sim, 0, true);  // the state at the stage start
+    if (resume_step < 0) sink_log.record(sim, sunk, 0, true);
     const std::int64_t interval = stage->output_every.given() ? stage->output_every.steps(sim.dt) : run.stage_steps;
     auto maybe_frame = [&]() {
       const std::int64_t s = sim.step - run.stage_start_step;
@@ -318,6 +327,7 @@ void run_stage(const StageOptions& o) {
       keep_integrals();
       keep_insert_counts();
       keep_energy();
+      keep_sink();
       write_checkpoint(restart_file, sim, meta);
       have_checkpoint = true;
       checkpoint_step = sim.step;
@@ -335,8 +345,10 @@ void run_stage(const StageOptions& o) {
       // Servo speeds for the next step from this step's forces: the periodic checkpoint holds them as
       // the walls' motion, so a resumed run continues exactly.
       if (!servos.empty()) drive_servos(sim, servos, k_max, c_max);
-      maybe_frame();
       const std::int64_t done = sim.step - run.stage_start_step;
+      // The sink after the step, so that a periodic checkpoint (written after it) holds its event.
+      if (stage->sink) sink_log.record(sim, sunk, sink_due(sim, *stage->sink, done, sunk), sim.step == end);
+      maybe_frame();
       wall_log.record(sim, done, sim.step == end);
       track.record(sim, done, sim.step == end);
       health.record(sim, done, sim.step == end);
@@ -389,11 +401,15 @@ void run_stage(const StageOptions& o) {
     track.finish();
     health.finish();
     energy.finish();
+    sink_log.finish();
     frames.commit(run.frame_times.size());
     if (!inserts.empty() && !o.quiet) std::cerr << "run-stage: " << insert_report(inserts, sim.time - run.stage_start_time) << "\n";
+    if (stage->sink && !o.quiet)
+      std::cerr << "run-stage: sink: removed " << sunk.count << " particles, " << sunk.mass << " kg (" << sink_file << ")\n";
     keep_integrals();
     keep_insert_counts();
     keep_energy();
+    keep_sink();
     write_checkpoint(o.out, sim, meta);
     if (!o.quiet) {
       const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - loop_start).count();
@@ -413,6 +429,7 @@ void run_stage(const StageOptions& o) {
       track.discard();
       health.discard();
       energy.discard();
+      sink_log.discard();
     }
     throw;
   }

@@ -180,6 +180,13 @@ struct FibreSpec {
   std::uint64_t seed = 1;
 };
 
+// `[stage.sink]`: particles whose centre is in the region at a sink event are removed and counted
+// (generation/sink.hpp): the sand a well produces.
+struct SinkSpec {
+  Region region;
+  long every = 1;  // steps between sink events (from the stage start)
+};
+
 struct StageSpec {
   std::string name;
   double duration = 0;      // [s]
@@ -195,6 +202,7 @@ struct StageSpec {
   std::vector<VelocitySpec> prescribes;      // groups moved at a set velocity for the whole stage
   std::optional<FluidParams> fluid;          // [stage.fluid]: the fluid's force during the stage
   std::optional<FibreSpec> fibres;           // fibres placed at the start, after the actions
+  std::optional<SinkSpec> sink;              // [stage.sink]: particles removed where they enter a region
 };
 
 struct Scene {
