@@ -3,6 +3,8 @@
 // The force loop adds them to a particle's net load after its contacts (forces/force_loop.hpp
 // ForceBlocks), in the order of the members below, so that the order of every sum is fixed.
 // Gravity is the first, the fluid's force (forces/fluid.hpp) the second (docs/architecture.md).
+#include <optional>
+
 #include "core/types.hpp"
 #include "forces/fluid.hpp"
 #include "state/particles.hpp"
@@ -10,9 +12,13 @@
 namespace dem {
 
 struct BodyForces {
+  BodyForces() = default;
+  BodyForces(const Vec3& g, const FluidParams* f) : gravity(g) {
+    if (f) fluid.emplace(*f);
+  }
   Vec3 gravity = Vec3::Zero();  // [m/s^2] (SimParams::gravity)
   // The stage's fluid, or none (a run without one pays a test per block of particles).
-  const FluidParams* fluid = nullptr;
+  std::optional<FluidField> fluid;
 
   // Adds the body forces on a particle of mass m to its force [N].
   void add_to(double mass, Vec3& force) const { force += mass * gravity; }

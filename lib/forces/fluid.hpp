@@ -70,15 +70,27 @@ struct FluidParams {
 
   bool on() const { return flow != Flow::None; }
 
+  // grad p at x [Pa/m] (P75), and the fluid's force on a grain (P71): FluidField's, below.
+  Vec3 pressure_gradient(const Vec3& x) const;
+  Vec3 force(double a, double eps, const Vec3& x, const Vec3& v, const Vec3& g) const;
+};
+
+// A stage's fluid as the force loop uses it: the constants of the pressure field worked out once
+// per step rather than once per grain (the well's logarithm).
+class FluidField {
+ public:
+  explicit FluidField(const FluidParams& f)
+      : f_(f), well_scale_(f.flow == FluidParams::Flow::Well ? f.drawdown / std::log(f.drainage_radius / f.well_radius) : 0) {}
+
   // grad p at x [Pa/m] (P75): zero inside the well (open hole, at the well pressure).
   Vec3 pressure_gradient(const Vec3& x) const {
-    if (flow == Flow::Uniform) return gradient;
-    if (flow != Flow::Well) return Vec3::Zero();
-    Vec3 r = x - well_centre;
-    r -= r.dot(well_axis) * well_axis;
+    if (f_.flow == FluidParams::Flow::Uniform) return f_.gradient;
+    if (f_.flow != FluidParams::Flow::Well) return Vec3::Zero();
+    Vec3 r = x - f_.well_centre;
+    r -= r.dot(f_.well_axis) * f_.well_axis;
     const double r2 = r.squaredNorm();
-    if (r2 < well_radius * well_radius) return Vec3::Zero();
-    return drawdown / std::log(drainage_radius / well_radius) / r2 * r;  // dp/dr r_hat, dp/dr = dp / (ln(re/rw) r)
+    if (r2 < f_.well_radius * f_.well_radius) return Vec3::Zero();
+    return well_scale_ / r2 * r;  // dp/dr r_hat, dp/dr = dp / (ln(re/rw) r)
   }
 
   // The fluid's force on a grain of radius a at x moving at v with local void fraction eps, under
@@ -87,10 +99,19 @@ struct FluidParams {
     const double vol = 4.0 / 3.0 * std::numbers::pi * a * a * a, d = 2 * a;
     const Vec3 gp = pressure_gradient(x);
     const double gn = gp.norm();
-    const Vec3 u = gn > 0 ? Vec3(-interstitial_speed(eps, d, gn, viscosity, density) / gn * gp) : Vec3(Vec3::Zero());
+    const Vec3 u = gn > 0 ? Vec3(-interstitial_speed(eps, d, gn, f_.viscosity, f_.density) / gn * gp) : Vec3(Vec3::Zero());
     const Vec3 slip = u - v;
-    return vol * drag_per_volume(eps, d, slip.norm(), viscosity, density) * slip - vol * gp - density * vol * g;
+    return vol * drag_per_volume(eps, d, slip.norm(), f_.viscosity, f_.density) * slip - vol * gp - f_.density * vol * g;
   }
+
+ private:
+  const FluidParams& f_;
+  double well_scale_;  // Well: dp / ln(r_e / r_w) [Pa]
 };
+
+inline Vec3 FluidParams::pressure_gradient(const Vec3& x) const { return FluidField(*this).pressure_gradient(x); }
+inline Vec3 FluidParams::force(double a, double eps, const Vec3& x, const Vec3& v, const Vec3& g) const {
+  return FluidField(*this).force(a, eps, x, v, g);
+}
 
 }  // namespace dem

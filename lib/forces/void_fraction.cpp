@@ -8,44 +8,38 @@
 
 namespace dem {
 
-namespace {
-// int_t0^t1 of sum_k h[k] t^k dt.
-double poly_integral(const double* h, int n, double t0, double t1) {
-  double sum = 0, p0 = t0, p1 = t1;
-  for (int k = 0; k < n; ++k) {
-    sum += h[k] * (p1 - p0) / (k + 1);
-    p0 *= t0, p1 *= t1;
-  }
-  return sum;
-}
-}  // namespace
+LucyBall::LucyBall(double c)
+    : c_(c), amp_(LucyKernel(c / std::sqrt(12.0)).amplitude()), f2_(-6 / (c * c)), f3_(8 / (c * c * c)), f4_(-3 / (c * c * c * c)) {}
 
-double ball_weight(double s, double a, double c) {
-  const LucyKernel kernel(c / std::sqrt(12.0));  // support c
-  const double amp = kernel.amplitude(), c2 = c * c;
-  // phi(t) / amp = 1 - 6 t^2/c^2 + 8 t^3/c^3 - 3 t^4/c^4 for t < c.
-  const double f[5] = {1, 0, -6 / c2, 8 / (c2 * c), -3 / (c2 * c2)};
+double LucyBall::weight(double s, double a) const {
+  // phi(t) / amp = f(t) = 1 + f2 t^2 + f3 t^3 + f4 t^4 for t < c (Lucy's polynomial, P70).
   double w = 0;
-  // The part of the support's spheres (about the origin) wholly inside the ball: t < a - s.
-  const double inner = std::min(a - s, c);
+  // The part of the support's spheres (about the origin) wholly inside the ball: t < a - s,
+  // 4 pi int_0^inner t^2 f(t) dt.
+  const double inner = std::min(a - s, c_);
   if (inner > 0) {
-    double h[7] = {0, 0, f[0], f[1], f[2], f[3], f[4]};  // t^2 f(t)
-    w += 4 * std::numbers::pi * poly_integral(h, 7, 0, inner);
+    const double t = inner;
+    w += 4 * std::numbers::pi * t * t * t * (1.0 / 3 + t * t * (f2_ / 5 + t * (f3_ / 6 + t * (f4_ / 7))));
   }
-  // Spheres cut by the ball's surface: |s - a| < t < s + a, area pi t (a^2 - (s - t)^2) / s.
-  const double t0 = std::abs(s - a), t1 = std::min(s + a, c);
+  // Spheres cut by the ball's surface: |s - a| < t < s + a, area pi t (a^2 - (s - t)^2) / s, so
+  // pi/s int_t0^t1 t (a^2 - (s - t)^2) f(t) dt: the polynomial h(t) = (g1 t + g2 t^2 - t^3) f(t),
+  // g1 = a^2 - s^2, g2 = 2 s, integrated term by term (Horner in t; H(t) = sum h_k t^(k+1)/(k+1)).
+  const double t0 = std::abs(s - a), t1 = std::min(s + a, c_);
   if (s > 0 && t1 > t0) {
-    const double g[4] = {0, a * a - s * s, 2 * s, -1};  // t (a^2 - (s - t)^2)
-    double h[8] = {0, 0, 0, 0, 0, 0, 0, 0};
-    for (int m = 0; m < 5; ++m)
-      for (int n = 1; n < 4; ++n) h[m + n] += f[m] * g[n];
-    w += std::numbers::pi / s * poly_integral(h, 8, t0, t1);
+    const double g1 = a * a - s * s, g2 = 2 * s;
+    const double H1 = g1 / 2, H2 = g2 / 3, H3 = (-1 + f2_ * g1) / 4, H4 = (f2_ * g2 + f3_ * g1) / 5,
+                 H5 = (-f2_ + f3_ * g2 + f4_ * g1) / 6, H6 = (-f3_ + f4_ * g2) / 7, H7 = -f4_ / 8;
+    auto H = [&](double t) { return t * t * (H1 + t * (H2 + t * (H3 + t * (H4 + t * (H5 + t * (H6 + t * H7)))))); };
+    w += std::numbers::pi / s * (H(t1) - H(t0));
   }
-  return amp * w;
+  return amp_ * w;
 }
+
+double ball_weight(double s, double a, double c) { return LucyBall(c).weight(s, a); }
 
 void void_fractions(const Particles& p, const PeriodicBox& box, double c, VoidFractionScratch& sc, std::vector<double>& eps) {
   const long n = static_cast<long>(p.size());
+  const LucyBall ball(c);
   // Every pair whose grains the other's kernel reaches: |x_i - x_j| < c + a_j (margin c covers it).
   sc.cells.find_near_pairs(p, box, sc.pairs, sc.groups, c, true);  // held grains fill space too
   const long m = static_cast<long>(sc.pairs.size());
@@ -54,10 +48,10 @@ void void_fractions(const Particles& p, const PeriodicBox& box, double c, VoidFr
   for (long k = 0; k < m; ++k) {
     const int i = sc.pairs[k].slot_i, j = sc.pairs[k].slot_j;
     const double s = box.nearest(p.x[j] - p.x[i]).norm();
-    sc.weight[2 * k] = ball_weight(s, p.radius[j], c);
-    sc.weight[2 * k + 1] = ball_weight(s, p.radius[i], c);
+    sc.weight[2 * k] = ball.weight(s, p.radius[j]);
+    sc.weight[2 * k + 1] = ball.weight(s, p.radius[i]);
   }
-  // Each particle's entries, then summed in the order of the other grain's id.
+  // Each particle's entries (CSR: start, entry) in no particular order.
   sc.start.assign(n + 1, 0);
   for (const FoundContact& f : sc.pairs) ++sc.start[f.slot_i + 1], ++sc.start[f.slot_j + 1];
   for (long i = 0; i < n; ++i) sc.start[i + 1] += sc.start[i];
@@ -67,13 +61,26 @@ void void_fractions(const Particles& p, const PeriodicBox& box, double c, VoidFr
     sc.entry[sc.fill[sc.pairs[k].slot_i]++] = static_cast<int>(2 * k);
     sc.entry[sc.fill[sc.pairs[k].slot_j]++] = static_cast<int>(2 * k + 1);
   }
+  // Then each particle's weights in the order of the other grain's id, without a sort per particle:
+  // visiting the grains o in id order, o's entry e (o seen by its partner is e ^ 1) goes to the
+  // partner's list, which so fills in the order of o's id.
+  sc.by_id.resize(n);
+  for (long i = 0; i < n; ++i) sc.by_id[i] = static_cast<int>(i);
+  std::sort(sc.by_id.begin(), sc.by_id.end(), [&](int a, int b) { return p.id[a] < p.id[b]; });
+  sc.fill.assign(sc.start.begin(), sc.start.end() - 1);
+  sc.ordered.resize(2 * m);
+  for (const int o : sc.by_id)
+    for (int q = sc.start[o]; q < sc.start[o + 1]; ++q) {
+      const int e = sc.entry[q];
+      const FoundContact& f = sc.pairs[e / 2];
+      const int partner = e % 2 == 0 ? f.slot_j : f.slot_i;
+      sc.ordered[sc.fill[partner]++] = sc.weight[e ^ 1];
+    }
   eps.resize(n);
 #pragma omp parallel for schedule(static) if (n > 128)
   for (long i = 0; i < n; ++i) {
-    auto other = [&](int e) { const FoundContact& f = sc.pairs[e / 2]; return e % 2 == 0 ? f.key_j : f.key_i; };
-    std::sort(sc.entry.begin() + sc.start[i], sc.entry.begin() + sc.start[i + 1], [&](int x, int y) { return other(x) < other(y); });
-    double solid = ball_weight(0, p.radius[i], c);
-    for (int q = sc.start[i]; q < sc.start[i + 1]; ++q) solid += sc.weight[sc.entry[q]];
+    double solid = ball.weight(0, p.radius[i]);
+    for (int q = sc.start[i]; q < sc.start[i + 1]; ++q) solid += sc.ordered[q];
     eps[i] = 1 - solid;
   }
 }

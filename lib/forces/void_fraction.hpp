@@ -17,6 +17,16 @@ namespace dem {
 // the area of a sphere about the origin inside the ball is pi t (a^2 - (s - t)^2) / s).
 double ball_weight(double s, double a, double c);
 
+// ball_weight for one support radius c, its constants computed once.
+class LucyBall {
+ public:
+  explicit LucyBall(double c);
+  double weight(double s, double a) const;  // ball_weight(s, a, c)
+
+ private:
+  double c_, amp_, f2_, f3_, f4_;  // phi(t) = amp (1 + f2 t^2 + f3 t^3 + f4 t^4), t < c
+};
+
 // Working storage of void_fractions, kept between calls (no allocation once sized).
 struct VoidFractionScratch {
   LinkedCells cells;
@@ -24,6 +34,8 @@ struct VoidFractionScratch {
   std::vector<int> groups;
   std::vector<double> weight;  // per pair
   std::vector<int> start, fill, entry;  // per particle: its pairs (CSR)
+  std::vector<int> by_id;               // the slots in id order
+  std::vector<double> ordered;          // per particle: its weights in the order of the other grain's id (CSR)
 };
 
 // eps_i for every particle (storage order), kernel support radius c [m]; pairs through the nearest

@@ -226,6 +226,8 @@ void run_stage(const StageOptions& o) {
   // afresh at a stage start.
   sim.params.fluid = stage->fluid ? *stage->fluid : FluidParams{};
   if (!sim.params.fluid.on()) sim.particles.void_fraction.clear();
+  // A fresh start only: a resumed run goes on with the step its start accepted (restart = uninterrupted run).
+  if (sim.step == meta.run.stage_start_step) check_drag_step(sim, scene.simulation.force_time_step, stage->name);
   const StartChecks checks(sim);
   checks.print("run-stage");
   meta.writer = "run-stage";

@@ -5,8 +5,11 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <numbers>
 #include <sstream>
 
+#include "forces/fluid.hpp"
+#include "forces/void_fraction.hpp"
 #include "walls/container.hpp"
 
 namespace dem {
@@ -220,6 +223,52 @@ void StartChecks::rethrow(const PhysicsError& e) const {
   m << "(" << ++k << ") otherwise the time step or the stiffness";
   if (e.advice.empty()) throw PhysicsError(m.str());
   throw PhysicsError(m.str(), e.advice);
+}
+
+DragRelaxation shortest_drag_relaxation(const Simulation& sim) {
+  DragRelaxation out;
+  const FluidParams& f = sim.params.fluid;
+  const Particles& p = sim.particles;
+  if (!f.on() || p.size() == 0) return out;
+  std::vector<double> eps;
+  VoidFractionScratch scratch;
+  void_fractions(p, sim.periodic, f.void_cutoff, scratch, eps);
+  const FluidField field(f);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.fixed[i]) continue;  // held: no motion to relax
+    const double d = 2 * p.radius[i];
+    const Vec3 gp = field.pressure_gradient(p.x[i]);
+    const double gn = gp.norm();
+    const Vec3 u = gn > 0 ? Vec3(-interstitial_speed(eps[i], d, gn, f.viscosity, f.density) / gn * gp) : Vec3(Vec3::Zero());
+    const double w = (u - p.v[i]).norm();
+    // P76: the drag per unit volume D(w) w grows with w; its slope is the rate at which a change of
+    // the grain's velocity along the slip is pulled back (the steepest direction), by a one-sided
+    // difference of the law itself (P72).
+    const double h = 1e-6 * w + 1e-12;
+    const double slope = (drag_per_volume(eps[i], d, w + h, f.viscosity, f.density) * (w + h) -
+                          drag_per_volume(eps[i], d, w, f.viscosity, f.density) * w) / h;
+    const double tau = p.mass[i] / (4.0 / 3.0 * std::numbers::pi * p.radius[i] * p.radius[i] * p.radius[i] * slope);
+    if (tau < out.tau) out = {tau, static_cast<long>(i), eps[i], w};
+  }
+  return out;
+}
+
+void check_drag_step(const Simulation& sim, bool forced, const std::string& stage) {
+  const DragRelaxation r = shortest_drag_relaxation(sim);
+  if (!(sim.dt > 2 * r.tau)) return;
+  const Particles& p = sim.particles;
+  std::ostringstream m;
+  m << "stage " << stage << ": the time step " << sim.dt << " s exceeds the fluid drag's stability limit " << 2 * r.tau
+    << " s (twice the relaxation time tau = " << r.tau << " s, docs/physics.md eq. P76-P77) of particle id " << p.id[r.slot]
+    << " (radius " << p.radius[r.slot] << " m, void fraction " << r.eps << ", slip " << r.slip
+    << " m/s): the drag would reverse its velocity relative to the fluid by more than it was each step and the run blows up";
+  if (forced) {
+    std::cerr << "warning: " << m.str() << " (simulation.force_time_step = true: running all the same)\n";
+    return;
+  }
+  m << "; lower simulation.time_step or frac to at most " << 2 * r.tau << " s, or raise the smallest grain's size or lower "
+    << "[stage.fluid] viscosity, or set simulation.force_time_step = true";
+  throw InputError(m.str());
 }
 
 void print_scene_warnings(const Scene& scene, const std::string& tool) {

@@ -4,6 +4,7 @@
 // each other at step 0, walls that move faster than the contacts can follow. Each finding is a
 // warning on stderr before the run; a run that then blows up (PhysicsError) lists the findings,
 // most likely first, before the core's time-step and stiffness advice, which applies when none does.
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -46,6 +47,20 @@ class StartChecks {
  private:
   std::vector<Suspect> suspects_;
 };
+
+// The fluid's drag relaxes a grain's velocity towards the flow's in tau = rho_p / (d(D w)/dw)
+// (docs/physics.md P76, D = beta / (1 - eps) of P72 at the slip speed w); the explicit step is
+// stable below 2 tau (P77). The grain of the shortest tau at the stage start, with its void
+// fraction (computed here) and slip.
+struct DragRelaxation {
+  double tau = std::numeric_limits<double>::infinity();  // [s]
+  long slot = -1;
+  double eps = 0, slip = 0;
+};
+DragRelaxation shortest_drag_relaxation(const Simulation& sim);
+// Throws InputError when sim.dt > 2 tau of the stage's fluid (P77), naming the grain, its size and
+// the limit; `forced` (simulation.force_time_step): a warning on stderr instead. No fluid: nothing.
+void check_drag_step(const Simulation& sim, bool forced, const std::string& stage);
 
 // The scene's plausibility warnings (Scene::warnings) as "TOOL: warning: ..." on stderr.
 void print_scene_warnings(const Scene& scene, const std::string& tool);
