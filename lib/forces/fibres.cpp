@@ -14,13 +14,15 @@ void FibreSet::add(const std::vector<std::pair<Index, Vec3>>& ties, const std::v
   first_tie.push_back(static_cast<int>(tie_id.size()));
   area.push_back(area_), modulus.push_back(modulus_), strength.push_back(strength_);
   for (std::size_t s = 0; s < rest_lengths.size(); ++s)
-    rest.push_back(rest_lengths[s]), broken.push_back(0), tension.push_back(0), tie_of.push_back(first + static_cast<int>(s)), fibre_of.push_back(f);
+    rest.push_back(rest_lengths[s]), broken.push_back(0), tension.push_back(0), tie_of.push_back(first + static_cast<int>(s)), fibre_of.push_back(f),
+        stiffness.push_back(modulus_ * area_ / rest_lengths[s]);
 }
 
 void FibreSet::index() {
-  tie_of.clear(), fibre_of.clear();
+  tie_of.clear(), fibre_of.clear(), stiffness.clear();
   for (std::size_t f = 0; f < fibres(); ++f)
     for (int t = first_tie[f]; t + 1 < first_tie[f + 1]; ++t) tie_of.push_back(t), fibre_of.push_back(static_cast<int>(f));
+  for (std::size_t s = 0; s < rest.size(); ++s) stiffness.push_back(modulus[fibre_of[s]] * area[fibre_of[s]] / rest[s]);
   tension.assign(rest.size(), 0.0);
   tie_slot.assign(tie_id.size(), -1);
 }
@@ -53,10 +55,9 @@ double FibreSet::elastic_energy(const Particles& p, const PeriodicBox& box) cons
   double e = 0;
   for (std::size_t s = 0; s < rest.size(); ++s) {
     if (broken[s] || tie_slot[tie_of[s]] < 0) continue;
-    // The energy of eq. P60's spring: T^2 L0 / (2 EA) = EA/(2 L0) (L - L0)^2.
-    const int f = fibre_of[s];
-    const double t = segment_tension(modulus[f] * area[f], rest[s], span(p, box, tie_of[s], tie_of[s] + 1).norm());
-    e += 0.5 * t * t * rest[s] / (modulus[f] * area[f]);
+    // The energy of eq. P60's spring: T^2 / (2 k) = EA/(2 L0) (L - L0)^2.
+    const double t = segment_tension(stiffness[s], rest[s], span(p, box, tie_of[s], tie_of[s] + 1).norm());
+    e += 0.5 * t * t / stiffness[s];
   }
   return e;
 }
@@ -64,7 +65,7 @@ double FibreSet::elastic_energy(const Particles& p, const PeriodicBox& box) cons
 double FibreSet::max_stiffness() const {
   double k = 0;
   for (std::size_t s = 0; s < rest.size(); ++s)
-    if (!broken[s]) k = std::max(k, modulus[fibre_of[s]] * area[fibre_of[s]] / rest[s]);
+    if (!broken[s]) k = std::max(k, stiffness[s]);
   return k;
 }
 
@@ -79,7 +80,7 @@ void add_fibre_forces(FibreSet& fibres, const Particles& p, const PeriodicBox& b
     const int a = fibres.tie_of[s], b = a + 1, f = fibres.fibre_of[s];
     const Vec3 d = fibres.span(p, box, a, b);
     const double length = d.norm();
-    const double t = segment_tension(fibres.modulus[f] * fibres.area[f], fibres.rest[s], length);  // eq. P60-P61
+    const double t = segment_tension(fibres.stiffness[s], fibres.rest[s], length);  // eq. P60-P61
     if (t == 0) {  // slack: no force in compression
       fibres.tension[s] = 0;
       continue;
@@ -102,8 +103,8 @@ void add_fibre_forces(FibreSet& fibres, const Particles& p, const PeriodicBox& b
 void compute_fibre_tensions(FibreSet& fibres, const Particles& p, const PeriodicBox& box) {
   fibres.resolve(p);
   for (std::size_t s = 0; s < fibres.segments(); ++s) {
-    const int a = fibres.tie_of[s], f = fibres.fibre_of[s];
-    const double t = fibres.broken[s] ? 0.0 : segment_tension(fibres.modulus[f] * fibres.area[f], fibres.rest[s], fibres.span(p, box, a, a + 1).norm());
+    const int a = fibres.tie_of[s];
+    const double t = fibres.broken[s] ? 0.0 : segment_tension(fibres.stiffness[s], fibres.rest[s], fibres.span(p, box, a, a + 1).norm());
     fibres.tension[s] = t > fibres.break_force(static_cast<int>(s)) ? 0.0 : t;
   }
 }
@@ -113,22 +114,26 @@ void rotate_ties(FibreSet& fibres, const Particles& p, double dt) {
   for (long t = 0; t < ties; ++t) {
     const int k = fibres.tie_slot[t];
     if (k < 0) continue;
-    const Vec3& w = p.w[k];
-    const double speed = w.norm();
-    if (speed == 0) continue;
-    // Rodrigues: r' = r cos(th) + (u x r) sin(th) + u (u . r)(1 - cos(th)), u = w/|w|, th = |w| dt.
-    const Vec3 u = w / speed;
-    const double th = speed * dt;
-    // The step's angle is tiny (|w| dt ~ 1e-4 at 100 rad/s): up to 1e-3 the series below, whose first
-    // omitted terms (th^7/5040, th^8/40320) are below 1e-19 of the kept ones, are exact to
-    // round-off, for a few multiplications against the library's sin and cos, which were most of
-    // the fibres' cost per step (bench/results/fibres.md).
-    const double th2 = th * th;
-    const bool small = th <= 1e-3;
-    const double c = small ? 1 - th2 / 2 * (1 - th2 / 12 * (1 - th2 / 30)) : std::cos(th);
-    const double sn = small ? th * (1 - th2 / 6 * (1 - th2 / 20)) : std::sin(th);
+    // Rodrigues with the step's rotation vector W = w dt, of angle th = |W|, left unnormalised:
+    // r' = r cos(th) + (W x r) sin(th)/th + W (W . r)(1 - cos(th))/th^2.
+    const Vec3 turn = p.w[k] * dt;
+    const double th2 = turn.squaredNorm();
+    if (th2 == 0) continue;
+    // The step's angle is tiny (|w| dt ~ 1e-4 at 100 rad/s): up to 1e-3 the series below in th^2,
+    // whose first omitted terms are below 1e-19 of the kept ones, are exact to round-off and need
+    // no square root, division, sin or cos, which were most of the fibres' cost per step
+    // (bench/results/fibres.md).
+    double c, sin_over_th, versine_over_th2;  // cos(th), sin(th)/th, (1 - cos(th))/th^2
+    if (th2 <= 1e-6) {
+      versine_over_th2 = 0.5 * (1 - th2 / 12 * (1 - th2 / 30));
+      c = 1 - th2 * versine_over_th2;
+      sin_over_th = 1 - th2 / 6 * (1 - th2 / 20);
+    } else {
+      const double th = std::sqrt(th2);
+      c = std::cos(th), sin_over_th = std::sin(th) / th, versine_over_th2 = (1 - c) / th2;
+    }
     Vec3& r = fibres.tie_offset[t];
-    r = r * c + u.cross(r) * sn + u * (u.dot(r) * (1 - c));
+    r = r * c + turn.cross(r) * sin_over_th + turn * (turn.dot(r) * versine_over_th2);
   }
 }
 

@@ -34,6 +34,7 @@ struct FibreSet {
   std::vector<std::uint8_t> broken;     // 1: broken, for ever
   std::vector<double> tension;          // T of the last force computation [N] (output, not state)
   std::vector<int> tie_of, fibre_of;    // derived (index())
+  std::vector<double> stiffness;        // derived: EA/L0 [N/m], so that a step divides by nothing
   std::vector<int> tie_slot;            // derived: each tie's particle's storage slot, -1: gone
 
   std::size_t fibres() const { return area.size(); }
@@ -45,7 +46,7 @@ struct FibreSet {
   // length per segment, none broken.
   void add(const std::vector<std::pair<Index, Vec3>>& ties, const std::vector<double>& rest_lengths, double area_, double modulus_,
            double strength_);
-  // Rebuilds tie_of, fibre_of and sizes tension and tie_slot (after add or a checkpoint read).
+  // Rebuilds tie_of, fibre_of, stiffness and sizes tension and tie_slot (after add or a checkpoint read).
   void index();
   // Finds each tie's slot again if any no longer holds its particle (checked every step, O(ties));
   // segments next to a tie whose particle is gone break. Allocates only when it searches.
@@ -63,11 +64,11 @@ struct FibreSet {
   double max_stiffness() const;
 };
 
-// Eq. P60-P61: the tension [N] of a segment of axial stiffness EA, rest length L0 and present
-// length L: EA/L0 (L - L0) when stretched, 0 when slack.
-inline double segment_tension(double ea, double rest, double length) {
+// Eq. P60-P61: the tension [N] of a segment of stiffness k = EA/L0 (FibreSet::stiffness), rest
+// length L0 and present length L: k (L - L0) when stretched, 0 when slack.
+inline double segment_tension(double stiffness, double rest, double length) {
   const double stretch = length - rest;
-  return stretch > 0 ? ea / rest * stretch : 0.0;
+  return stretch > 0 ? stiffness * stretch : 0.0;
 }
 
 // Each segment's tension into fibres.tension, as the force loop would find it at this state (0

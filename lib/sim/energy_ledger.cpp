@@ -101,14 +101,14 @@ void account_fibres(const FibreSet& fibres, const std::vector<std::uint8_t>& bro
   for (std::size_t s = 0; s < fibres.segments(); ++s) {
     const bool broke = fibres.broken[s] && s < broken_before.size() && !broken_before[s];
     if (fibres.broken[s] && !broke) continue;
-    const int a = fibres.tie_of[s], b = a + 1, f = fibres.fibre_of[s];
+    const int a = fibres.tie_of[s], b = a + 1;
     const int ia = fibres.tie_slot[a], ib = fibres.tie_slot[b];
     if (ia < 0 || ib < 0) continue;  // a particle removed: at a stage start, before the reference
     const Vec3 &oa = fibres.tie_offset[a], &ob = fibres.tie_offset[b];
     const Vec3 d = x0[ib] - x0[ia] + (ob - oa);  // the span at x^n (no periodic boundaries with fibres)
-    const double length = d.norm(), ea = fibres.modulus[f] * fibres.area[f];
-    const double tension = segment_tension(ea, fibres.rest[s], length);
-    const double e = 0.5 * tension * tension * fibres.rest[s] / ea;
+    const double length = d.norm(), k = fibres.stiffness[s];
+    const double tension = segment_tension(k, fibres.rest[s], length);
+    const double e = 0.5 * tension * tension / k;
     const Vec3 dir = d / length;
     // The stretch rate with the velocities of a half step: the tie points move with v + w x offset.
     auto stretch = [&](const Vec3* v, const Vec3* w) { return dir.dot(v[ib] + w[ib].cross(ob) - v[ia] - w[ia].cross(oa)) * dt; };
