@@ -38,12 +38,8 @@ $(HEL_DIR)/energy.png: $(HEL_DIR)/spun.energy.csv scripts/plot_energy.py scripts
 HEL_TIMES := 0.5 1.5 2.9
 HEL_RENDER := xvfb-run -a $(BIN)/dem-render --quiet --relative-time --range 0,1 --box -0.5,-0.5,0.0,0.5,0.5,1.0 --size 1024,768
 HEL_PNGS := $(foreach t,$(HEL_TIMES),$(HEL_DIR)/render/perspective_$(t).png $(HEL_DIR)/render/cut_$(t).png)
-$(HEL_DIR)/render/perspective_%.png: $(HEL_DIR)/vtk/spin_particles.pvd $(BIN)/dem-render
-	@mkdir -p $(@D)
-	$(HEL_RENDER) --in $< --time $* --out $@
-$(HEL_DIR)/render/cut_%.png: $(HEL_DIR)/vtk/spin_particles.pvd $(BIN)/dem-render
-	@mkdir -p $(@D)
-	$(HEL_RENDER) --in $< --time $* --view cut --point 0,0,0.5 --normal 0,1,0 --out $@
+HEL_CUT := --point 0,0,0.5 --normal 0,1,0
+$(eval $(call render_rules,$(HEL_DIR),$(HEL_DIR)/vtk/spin_particles.pvd,HEL_RENDER,HEL_CUT))
 
 .PHONY: helical-flow helical-flow-outputs
 helical-flow: build

@@ -42,12 +42,8 @@ $(IMP_DIR)/energy.png: $(IMP_DIR)/impact.energy.csv scripts/plot_energy.py scrip
 # Four instants coloured by speed [0, 5 m/s]: in perspective, and cut by the mid-plane of B2's
 # path (y = 0.3 m, seen from +y).
 IMP_PNGS := $(foreach t,$(IMP_TIMES),$(IMP_DIR)/render/perspective_$(t).png $(IMP_DIR)/render/cut_$(t).png)
-$(IMP_DIR)/render/perspective_%.png: $(IMP_DIR)/vtk/impact_particles.pvd $(BIN)/dem-render
-	@mkdir -p $(@D)
-	$(IMP_RENDER) --in $< --time $* --out $@
-$(IMP_DIR)/render/cut_%.png: $(IMP_DIR)/vtk/impact_particles.pvd $(BIN)/dem-render
-	@mkdir -p $(@D)
-	$(IMP_RENDER) --in $< --time $* --view cut --point 0.1,0.3,0.3 --normal 0,1,0 --out $@
+IMP_CUT := --point 0.1,0.3,0.3 --normal 0,1,0
+$(eval $(call render_rules,$(IMP_DIR),$(IMP_DIR)/vtk/impact_particles.pvd,IMP_RENDER,IMP_CUT))
 
 .PHONY: impact impact-outputs
 impact: build
