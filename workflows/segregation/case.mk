@@ -84,3 +84,38 @@ segregation-sweep: build
 	@$(MAKE) --no-print-directory -f $(SELF) segregation-sweep-outputs
 	@echo "segregation-sweep: table $(SEG_SWEEP_DIR)/sweep.csv, plot $(SEG_SWEEP_DIR)/sweep.png"
 segregation-sweep-outputs: $(SEG_SWEEP_DIR)/sweep.csv
+
+# Rise over several fills (workflows/segregation/seeds.toml): fills that differ only in the
+# generation seed (SEG_SEEDS), each shaken at 3 g and 20 Hz for 700 cycles at the thesis's step
+# under a lid at 0.12 m; about 10 minutes per fill on one core (make -j2 runs two fills at once).
+#   make -f Makefile.cases segregation-seeds [SEG_SEEDS="1 2 3"]
+SEG_SEEDS_SCENE := workflows/segregation/seeds.toml
+SEG_SEEDS_DIR := $(SEG_DIR)/seeds
+SEG_SEEDS ?= 2004 1 2 3 4 5# 2004: the demo's own fill (scene.toml)
+
+# One copy of scene.toml per seed, so that each fill's checkpoint records the scene that made it.
+$(SEG_SEEDS_DIR)/fill_%.toml: $(SEG_SCENE)
+	@mkdir -p $(@D)
+	sed 's/^seed = 2004$$/seed = $*/' $< > $@.tmp && grep -q '^seed = $*$$' $@.tmp && mv $@.tmp $@
+
+.SECONDARY: $(foreach s,$(SEG_SEEDS),$(SEG_SEEDS_DIR)/fill_$(s).toml $(SEG_SEEDS_DIR)/fill_$(s).h5)
+$(SEG_SEEDS_DIR)/fill_%.h5: $(SEG_SEEDS_DIR)/fill_%.toml $(BIN)/gen-primary
+	$(BIN)/gen-primary --scene $< --out $@ --quiet
+
+$(SEG_SEEDS_DIR)/shake_%.h5 $(SEG_SEEDS_DIR)/shake_%.csv &: $(SEG_SEEDS_SCENE) $(SEG_SEEDS_DIR)/fill_%.h5 $(BIN)/run-stage
+	OMP_NUM_THREADS=1 $(BIN)/run-stage --scene $(SEG_SEEDS_SCENE) --stage shake --in $(SEG_SEEDS_DIR)/fill_$*.h5 \
+	  --out $(SEG_SEEDS_DIR)/shake_$*.h5 --track $(SEG_SEEDS_DIR)/shake_$*.csv --track-ids 0 --track-every 100 \
+	  --checkpoint-every 500000 --restart --quiet
+
+$(SEG_SEEDS_DIR)/seeds.csv $(SEG_SEEDS_DIR)/spread.csv $(SEG_SEEDS_DIR)/seeds.png &: \
+    $(foreach s,$(SEG_SEEDS),$(SEG_SEEDS_DIR)/shake_$(s).h5) scripts/segregation_sweep.py scripts/segregation_report.py scripts/post_table.py
+	$(PYTHON) scripts/segregation_sweep.py $(foreach s,$(SEG_SEEDS),--start $(SEG_SEEDS_DIR)/fill_$(s).h5) \
+	  $(foreach s,$(SEG_SEEDS),--run seed_$(s) $(SEG_SEEDS_DIR)/shake_$(s).csv 20 3) \
+	  --table $(SEG_SEEDS_DIR)/seeds.csv --summary $(SEG_SEEDS_DIR)/spread.csv --png $(SEG_SEEDS_DIR)/seeds.png \
+	  --title "Brazil-nut rise at 3 g, 20 Hz, from $(words $(SEG_SEEDS)) fills (lid at 0.12 m)"
+
+.PHONY: segregation-seeds segregation-seeds-outputs
+segregation-seeds: build
+	@$(MAKE) --no-print-directory -f $(SELF) segregation-seeds-outputs
+	@echo "segregation-seeds: table $(SEG_SEEDS_DIR)/seeds.csv, spread $(SEG_SEEDS_DIR)/spread.csv, plot $(SEG_SEEDS_DIR)/seeds.png"
+segregation-seeds-outputs: $(SEG_SEEDS_DIR)/seeds.png
