@@ -72,6 +72,12 @@ TEST(VoidFraction, BallWeightIsTheExactKernelIntegral) {
     const double pizzetti = 4.0 / 3.0 * kPi * a * a * a * (phi + a * a / 10 * lap + std::pow(a, 4) / 280 * lap2);
     EXPECT_NEAR(ball_weight(s, a, c), pizzetti, 1e-12) << "s = " << s;
   }
+  // LucyBall::weight takes that mean value where it holds (the ball inside the support, away from
+  // its centre) and the shells' integral elsewhere: both the same, to the same 1e-12, on either
+  // side of the edges s = a and s + a = c.
+  const LucyBall ball(c);
+  for (double a : {0.3, 0.5, 1.1})
+    for (double s = 0.01; s < c + a; s += 0.01) EXPECT_NEAR(ball.weight(s, a), ball.shells(s, a), 1e-12) << "s = " << s << ", a = " << a;
 }
 
 // The simple cubic (1 - pi/6 = 0.4764) and face-centred cubic (1 - pi/(3 sqrt 2) = 0.2595)

@@ -22,28 +22,46 @@ inline constexpr double kFlowVoidMax = 0.95;
 // Schiller & Naumann's drag coefficient of a sphere at particle Reynolds number re (P73).
 inline double schiller_naumann_cd(double re) { return re < 1000 ? 24 / re * (1 + 0.15 * std::pow(re, 0.687)) : 0.44; }
 
-// beta / (1 - eps) [kg/(m^3 s)]: the drag per unit particle volume and unit slip velocity
-// (P71, P72), for void fraction eps, grain diameter d, slip speed w = |u - v| (u interstitial),
-// fluid viscosity mu and density rho. Finite as eps -> 1 (a lone sphere: Schiller & Naumann).
-inline double drag_per_volume(double eps, double d, double w, double mu, double rho) {
-  if (eps < kErgunWenYuSwitch) return 150 * (1 - eps) / eps * mu / (d * d) + 1.75 * rho * w / d;  // Ergun
+// Ergun's beta / (1 - eps) (P72, eps < 0.8) as viscous + inertial w, for void fraction eps, grain
+// diameter d, fluid viscosity mu and density rho; and the slip speed at which it carries a given
+// drag per unit particle volume (P74).
+struct Ergun {
+  Ergun(double eps, double d, double mu, double rho) : viscous(150 * (1 - eps) / eps * mu / (d * d)), inertial(1.75 * rho / d) {}
+  double drag(double w) const { return viscous + inertial * w; }
+  // The speed w at which drag(w) w = share g, divided by g > 0: the root of inertial w^2 + viscous w
+  // = share g, written without cancellation.
+  double speed_per_gradient(double share, double g) const {
+    return 2 * share / (viscous + std::sqrt(viscous * viscous + 4 * inertial * share * g));
+  }
+  double viscous, inertial;  // [kg/(m^3 s)], [kg/m^4]
+};
+
+// beta / (1 - eps) of Wen & Yu (P72-P73, eps >= 0.8), arguments as drag_per_volume's below.
+inline double wen_yu_drag(double eps, double d, double w, double mu, double rho) {
   const double re = eps * rho * d * w / mu;
   if (re <= 0) return 18 * mu / (d * d) * std::pow(eps, -2.65);  // Stokes limit of Wen & Yu
   return 0.75 * schiller_naumann_cd(re) * eps * rho * w / d * std::pow(eps, -2.65);  // Wen & Yu
 }
 
-// The interstitial speed w at which a fixed bed of void fraction eps carries the pressure gradient
-// g = |grad p| (P74): per unit bed volume the fluid's drag on the grains balances its share of the
-// pressure gradient, beta(w) w = eps g, i.e. drag_per_volume(w) w = eps g / (1 - eps). Ergun: a quadratic, solved in closed form; Wen & Yu:
-// bisection on the monotone drag (60 halvings: to the last bit of the bracket).
-inline double interstitial_speed(double eps, double d, double g, double mu, double rho) {
-  if (g <= 0) return 0;
+// beta / (1 - eps) [kg/(m^3 s)]: the drag per unit particle volume and unit slip velocity
+// (P71, P72), for void fraction eps, grain diameter d, slip speed w = |u - v| (u interstitial),
+// fluid viscosity mu and density rho. Finite as eps -> 1 (a lone sphere: Schiller & Naumann).
+inline double drag_per_volume(double eps, double d, double w, double mu, double rho) {
+  return eps < kErgunWenYuSwitch ? Ergun(eps, d, mu, rho).drag(w) : wen_yu_drag(eps, d, w, mu, rho);
+}
+
+// The drag's share of the pressure gradient in a fixed bed of void fraction eps (P74), eps / (1 - eps),
+// at no more than kFlowVoidMax.
+inline double flow_share(double eps) {
   eps = std::min(eps, kFlowVoidMax);
-  const double need = eps * g / (1 - eps);  // drag_per_volume(w) w
-  if (eps < kErgunWenYuSwitch) {
-    const double a = 1.75 * rho / d, b = 150 * (1 - eps) / eps * mu / (d * d);
-    return 2 * need / (b + std::sqrt(b * b + 4 * a * need));  // a w^2 + b w = need, without cancellation
-  }
+  return eps / (1 - eps);
+}
+
+// interstitial_speed's Wen & Yu side, eps >= 0.8: bisection on the monotone drag (60 halvings: to
+// the last bit of the bracket).
+inline double wen_yu_speed(double eps, double d, double g, double mu, double rho) {
+  const double need = flow_share(eps) * g;  // drag_per_volume(w) w
+  eps = std::min(eps, kFlowVoidMax);
   double lo = 0, hi = need / (18 * mu / (d * d) * std::pow(eps, -2.65));  // the Stokes speed: drag only adds to Stokes
   while (drag_per_volume(eps, d, hi, mu, rho) * hi < need) hi *= 2;
   for (int k = 0; k < 60; ++k) {
@@ -52,6 +70,26 @@ inline double interstitial_speed(double eps, double d, double g, double mu, doub
   }
   return 0.5 * (lo + hi);
 }
+
+// The interstitial speed w at which a fixed bed of void fraction eps carries the pressure gradient
+// g = |grad p| (P74): per unit bed volume the fluid's drag on the grains balances its share of the
+// pressure gradient, beta(w) w = eps g, i.e. drag_per_volume(w) w = eps g / (1 - eps). Ergun: a
+// quadratic, solved in closed form; Wen & Yu: wen_yu_speed.
+inline double interstitial_speed(double eps, double d, double g, double mu, double rho) {
+  if (g <= 0) return 0;
+  if (eps < kErgunWenYuSwitch) return Ergun(eps, d, mu, rho).speed_per_gradient(flow_share(eps), g) * g;
+  return wen_yu_speed(eps, d, g, mu, rho);
+}
+
+// What the fluid's force on one grain (P71-P74) needs of its radius a and void fraction eps alone,
+// worked out once per void-fraction update (Simulation keeps one per particle): a step's force then
+// takes no division but the pressure field's and the flow speed's.
+struct FluidGrain {
+  double eps = 1, d = 0;              // the void fraction and the diameter (Wen & Yu's path)
+  double volume = 0, displaced = 0;   // V_p [m^3], rho_f V_p [kg]
+  double share = 0;                   // flow_share(eps) (P74)
+  Ergun ergun{0.5, 1, 0, 0};          // eps < 0.8: Ergun's terms at eps
+};
 
 // The fluid of a stage ([stage.fluid], docs/scene.md): its properties, the pressure field and the
 // void-fraction estimator's settings.
@@ -93,16 +131,36 @@ class FluidField {
     return well_scale_ / r2 * r;  // dp/dr r_hat, dp/dr = dp / (ln(re/rw) r)
   }
 
-  // The fluid's force on a grain of radius a at x moving at v with local void fraction eps, under
-  // gravity g [N] (P71).
-  Vec3 force(double a, double eps, const Vec3& x, const Vec3& v, const Vec3& g) const {
-    const double vol = 4.0 / 3.0 * std::numbers::pi * a * a * a, d = 2 * a;
-    const Vec3 gp = pressure_gradient(x);
-    const double gn = gp.norm();
-    const Vec3 u = gn > 0 ? Vec3(-interstitial_speed(eps, d, gn, f_.viscosity, f_.density) / gn * gp) : Vec3(Vec3::Zero());
-    const Vec3 slip = u - v;
-    return vol * drag_per_volume(eps, d, slip.norm(), f_.viscosity, f_.density) * slip - vol * gp - f_.density * vol * g;
+  // The constants of grain of radius a and void fraction eps.
+  FluidGrain grain(double a, double eps) const {
+    FluidGrain g;
+    g.eps = eps, g.d = 2 * a;
+    g.volume = 4.0 / 3.0 * std::numbers::pi * a * a * a, g.displaced = f_.density * g.volume;
+    g.share = flow_share(eps);
+    g.ergun = Ergun(eps, g.d, f_.viscosity, f_.density);
+    return g;
   }
+
+  // The fluid's interstitial velocity u at grain g where the pressure gradient is gp (P74).
+  Vec3 flow(const FluidGrain& g, const Vec3& gp) const {
+    const double gn = gp.norm();
+    if (!(gn > 0)) return Vec3::Zero();
+    const double per_gradient = g.eps < kErgunWenYuSwitch ? g.ergun.speed_per_gradient(g.share, gn)
+                                                          : interstitial_speed(g.eps, g.d, gn, f_.viscosity, f_.density) / gn;
+    return -per_gradient * gp;
+  }
+
+  // The fluid's force on grain g at x moving at v, under gravity [N] (P71): the drag at the slip
+  // from the flow at x.
+  Vec3 force(const FluidGrain& g, const Vec3& x, const Vec3& v, const Vec3& gravity) const {
+    const Vec3 gp = pressure_gradient(x);
+    const Vec3 slip = flow(g, gp) - v;
+    const double w = slip.norm();
+    const double drag = g.eps < kErgunWenYuSwitch ? g.ergun.drag(w) : drag_per_volume(g.eps, g.d, w, f_.viscosity, f_.density);
+    return g.volume * drag * slip - g.volume * gp - g.displaced * gravity;
+  }
+  // The same for a grain of radius a with local void fraction eps.
+  Vec3 force(double a, double eps, const Vec3& x, const Vec3& v, const Vec3& gravity) const { return force(grain(a, eps), x, v, gravity); }
 
  private:
   const FluidParams& f_;

@@ -237,10 +237,7 @@ DragRelaxation shortest_drag_relaxation(const Simulation& sim) {
   for (std::size_t i = 0; i < p.size(); ++i) {
     if (p.fixed[i]) continue;  // held: no motion to relax
     const double d = 2 * p.radius[i];
-    const Vec3 gp = field.pressure_gradient(p.x[i]);
-    const double gn = gp.norm();
-    const Vec3 u = gn > 0 ? Vec3(-interstitial_speed(eps[i], d, gn, f.viscosity, f.density) / gn * gp) : Vec3(Vec3::Zero());
-    const double w = (u - p.v[i]).norm();
+    const double w = (field.flow(field.grain(p.radius[i], eps[i]), field.pressure_gradient(p.x[i])) - p.v[i]).norm();
     // P76: the drag per unit volume D(w) w grows with w; its slope is the rate at which a change of
     // the grain's velocity along the slip is pulled back (the steepest direction), by a one-sided
     // difference of the law itself (P72).

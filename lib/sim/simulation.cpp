@@ -47,9 +47,8 @@ void Simulation::compute_forces() {
   block_force_.resize(particles.size());
   block_torque_.resize(particles.size());
   const bool fluid = params.fluid.on();
-  if (fluid && (particles.void_fraction.size() != particles.size() || step % params.fluid.void_every == 0))
-    void_fractions(particles, periodic, params.fluid.void_cutoff, void_scratch_, particles.void_fraction);
-  const BodyForces body{params.gravity, fluid ? &params.fluid : nullptr};
+  if (fluid) update_fluid_grains();
+  const BodyForces body{params.gravity, fluid ? &params.fluid : nullptr, fluid_grains_.data()};
   ForceBlocks loads{params.load_block, block_first_, block_needs_, needed_from_, by_key_start_, by_key_, force_times_,
                     block_done_,       ++force_epoch_, body,       simd_loops_on(), block_force_, block_torque_};
   const double worst_overlap = compute_contact_forces(in, choose_force_variant(materials, has_bonds()), pairs_, walls_, loads);
@@ -61,6 +60,22 @@ void Simulation::compute_forces() {
   pair_results_kept_ = params.keep_pair_results;
   contacts_modified();
   if (worst_overlap > params.max_overlap) report_overlap(worst_overlap);
+}
+
+void Simulation::update_fluid_grains() {
+  const long n = static_cast<long>(particles.size());
+  if (static_cast<long>(particles.void_fraction.size()) != n || step % params.fluid.void_every == 0) {
+    void_fractions(particles, periodic, params.fluid.void_cutoff, void_scratch_, particles.void_fraction);
+    fluid_grains_.clear();
+  }
+  const double mu = params.fluid.viscosity, rho = params.fluid.density;
+  if (static_cast<long>(fluid_grains_.size()) == n && fluid_grains_for_[0] == mu && fluid_grains_for_[1] == rho) return;
+  // Each grain's from its radius and void fraction alone: a resumed run rebuilds the same bits.
+  const FluidField field(params.fluid);
+  fluid_grains_.resize(n);
+  fluid_grains_for_[0] = mu, fluid_grains_for_[1] = rho;
+#pragma omp parallel for schedule(static) if (n > 1024)
+  for (long i = 0; i < n; ++i) fluid_grains_[i] = field.grain(particles.radius[i], particles.void_fraction[i]);
 }
 
 const ContactList& Simulation::pair_contacts() const {
@@ -232,6 +247,7 @@ void Simulation::sort_storage() {
   particles.reorder(order);
   // The slots in the lists are stale: the next search rebuilds them (history is kept by ids).
   neighbours_.invalidate();
+  fluid_grains_.clear();  // rebuilt in the new order from the void fractions, which moved with their particles
 }
 
 void Simulation::find_contacts() {

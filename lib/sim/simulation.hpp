@@ -157,6 +157,8 @@ class Simulation {
   [[noreturn]] void report_energy_gain() const;
   void update_wall_geometry();
   void sort_storage();
+  // The fluid's void fractions when due (SimParams::fluid) and fluid_grains_ when stale.
+  void update_fluid_grains();
   void find_contacts();
   void count_bonds();
   void index_contacts_per_particle();
@@ -199,6 +201,11 @@ class Simulation {
   std::vector<int> wall_runs_;  // first wall candidate of each particle, then the end
   std::vector<int> wall_run_order_, wall_block_first_;  // ForceLoopInput's
   VoidFractionScratch void_scratch_;  // working storage of the fluid's void fractions
+  // Per slot, FluidField::grain of its radius and void fraction (the force's constants), for the
+  // fluid's viscosity and density in fluid_grains_for_; emptied when the void fractions are
+  // recomputed or the storage is sorted, and rebuilt from them before the force loop.
+  std::vector<FluidGrain> fluid_grains_;
+  double fluid_grains_for_[2] = {0, 0};
   // While ledger.on: the state before the motion, and the bonds before the force loop (those that
   // broke this step release their energy).
   std::vector<Vec3> ledger_x_, ledger_v_, ledger_w_;
