@@ -373,14 +373,24 @@ TEST(MendesBond, SimulationBreaksAtS0AndNeverReforms) {
   EXPECT_LE(push_back_and_pull(sim, kPullRate, r.s_break), 0.0) << "no attraction after the break";
 }
 
-// SPEC §6 Decision (separation): mendes with eps >= 1/e (the impact case's eps = 0.5) has no
-// tension branch, so s0 = 0 and the bond breaks as soon as the particles separate (a gap beyond
-// round-off: kBondTouchTolerance x 2R*, 1e-9 m here). Bonded at an overlap and pulled apart at
+// SPEC §6 Decision (separation): a law without tension (cundall, hertz, and mendes with eps >= 1/e,
+// the impact case's eps = 0.5) has s0 = 0, so a bond breaks as soon as the particles separate (a gap
+// beyond round-off: kBondTouchTolerance x 2R*, 1e-9 m here). Bonded at an overlap and pulled apart at
 // 2 mm/s (2.9e-9 m per step): it holds (no tension) while the spheres overlap or touch, and the flag
 // drops in the first step whose gap exceeds that tolerance; pushed back, the contact is unbonded:
-// no tension and no cohesion (its shear strength is mu f_n, not C + mu f_n).
-TEST(MendesBond, WithoutTensionBreaksWhenParticlesSeparate) {
-  Material mat = bond_material(NormalLaw::Mendes, 0.5);
+// no tension and no cohesion (its shear strength is mu f_n, not C + mu f_n). (The four-wide cundall
+// code: SimdLoops.LawEndsARunWithThePlainLoopsBits.)
+struct NoTensionLaw {
+  NormalLaw law;
+  double epsilon;
+};
+std::ostream& operator<<(std::ostream& o, const NoTensionLaw& l) {
+  return o << normal_law_name(l.law) << " eps " << l.epsilon;
+}
+class BondWithoutTension : public ::testing::TestWithParam<NoTensionLaw> {};
+
+TEST_P(BondWithoutTension, BreaksWhenParticlesSeparate) {
+  Material mat = bond_material(GetParam().law, GetParam().epsilon);
   mat.cohesion = 0.5;
   Simulation sim = two_sphere_sim(mat);
   ASSERT_FALSE(sim.materials.pair(0, 0).mendes_tension);
@@ -394,7 +404,9 @@ TEST(MendesBond, WithoutTensionBreaksWhenParticlesSeparate) {
   // Cohesion: a contact at overlap u0 slid tangentially by far more than tau / kt in one step
   // carries |f_t| = tau: C + mu f_n while bonded, mu f_n once the bond is gone.
   const PairParams p = sim.materials.pair(0, 0);
-  const double u0 = 1e-5, fn = kKn * u0, mu = std::tan(30 * kDegree);
+  const double u0 = 1e-5, mu = std::tan(30 * kDegree);
+  bool held = true;
+  const double fn = MixedNormal::elastic(p, u0, kRadius / 2, held);
   auto sliding_force = [&](std::uint8_t& bonded) {
     ContactKinematics c;
     c.n = Vec3::UnitX();
@@ -404,7 +416,9 @@ TEST(MendesBond, WithoutTensionBreaksWhenParticlesSeparate) {
     c.m_eff = 1.0;
     c.r_eff = kRadius / 2;
     Vec3 spring = Vec3::Zero();
-    return ContactModel<MendesNormal>::evaluate(p, c, 1e-3, spring, bonded).tangential.norm();
+    return with_normal_law(p.law, [&](auto law) {
+      return ContactModel<decltype(law)>::evaluate(p, c, 1e-3, spring, bonded).tangential.norm();
+    });
   };
   std::uint8_t intact = 1, broken = 0;
   EXPECT_NEAR(sliding_force(intact), mat.cohesion + mu * fn, 1e-9);
@@ -412,13 +426,20 @@ TEST(MendesBond, WithoutTensionBreaksWhenParticlesSeparate) {
   EXPECT_NEAR(sliding_force(broken), mu * fn, 1e-9);
   // The law itself: bonded at a gap within the tolerance it holds, beyond it it breaks for good.
   std::uint8_t b = 1;
-  EXPECT_EQ(law_tension<MendesNormal>(p, 0.5 * tolerance, b), 0.0);
+  const auto tension = [&](double gap) {
+    return with_normal_law(p.law, [&](auto law) { return law_tension<decltype(law)>(p, gap, b); });
+  };
+  EXPECT_EQ(tension(0.5 * tolerance), 0.0);
   EXPECT_EQ(b, 1);
-  EXPECT_EQ(law_tension<MendesNormal>(p, 2 * tolerance, b), 0.0);
+  EXPECT_EQ(tension(2 * tolerance), 0.0);
   EXPECT_EQ(b, 0);
-  EXPECT_NEAR(-law_tension<MendesNormal>(p, -u0, b), fn, 1e-12) << "compression as before";
+  EXPECT_NEAR(-tension(-u0), fn, 1e-12) << "compression as before";
   EXPECT_EQ(b, 0) << "never re-forms";
 }
+
+INSTANTIATE_TEST_SUITE_P(Laws, BondWithoutTension,
+                         ::testing::Values(NoTensionLaw{NormalLaw::Mendes, 0.5}, NoTensionLaw{NormalLaw::Cundall, 1e-4},
+                                           NoTensionLaw{NormalLaw::Hertz, 1e-4}));
 
 // ---------------------------------------------------------------------------------------------
 // 2. Liu law (eq. 2.21): tension k_n s up to F, then an abrupt break; no tension without a bond.

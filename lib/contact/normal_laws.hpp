@@ -48,17 +48,27 @@ inline constexpr PropertyKey kMendesEpsilonKey{.keyword = "epsilon", .number = &
 // lose the bonds whose centres happen to lie a few ulps too far apart.
 inline constexpr double kBondTouchTolerance = 1e-6;
 
+// SPEC §6 Decision (separation), for the laws without tension (cundall, hertz, mendes with
+// epsilon >= 1/e): the bond breaks where the particles are apart by more than
+// kBondTouchTolerance 2R*. Written over lanes: the four-wide cundall code runs it too.
+template <class L, class M>
+[[gnu::always_inline]] inline void break_when_apart(const L& u, const L& r_eff, M& bonded) {
+  bonded = lanes::but_not(bonded, lanes::less(u, -(L(2 * kBondTouchTolerance) * r_eff)));
+}
+
 // The energy bound of the linear compression every law shares: ½ kn u² [J].
 inline double linear_compression_energy(const PairParams& p, double u) { return u > 0 ? 0.5 * p.kn * u * u : 0.0; }
 
-// Cundall & Strack: linear in compression, no tension.
+// Cundall & Strack: linear in compression, no tension; a bond (cohesion C in shear) holds while
+// the particles touch.
 struct CundallNormal {
   using Damping = ViscousDamping;
   static constexpr std::string_view keyword = "cundall";
   static constexpr bool four_wide = true;
   using WithoutBonds = CundallNormal;  // the law it acts as while no contact is bonded
   template <class P, class L, class M>
-  [[gnu::always_inline]] static L elastic(const P& p, const L& u, const L& /*r_eff*/, M& /*bonded*/) {
+  [[gnu::always_inline]] static L elastic(const P& p, const L& u, const L& r_eff, M& bonded) {
+    break_when_apart(u, r_eff, bonded);
     return lanes::only_where(lanes::less(L(0.0), u), p.kn * u);
   }
   static double stored_energy(const PairParams& p, double u, double /*r_eff*/, bool /*bonded*/) { return linear_compression_energy(p, u); }
@@ -122,7 +132,7 @@ struct MendesNormal {
     if (!bonded) return 0.0;
     const double s = -u;
     if (!p.mendes_tension) {
-      if (s > kBondTouchTolerance * 2 * r_eff) bonded = false;  // apart: s0 = 0 (SPEC §6)
+      break_when_apart(u, r_eff, bonded);  // s0 = 0
       return 0.0;
     }
     if (s >= p.break_separation) {
@@ -158,7 +168,8 @@ struct HertzNormal {
   static constexpr std::string_view keyword = "hertz";
   static constexpr bool four_wide = false;
   using WithoutBonds = HertzNormal;
-  static double elastic(const PairParams& p, double u, double r_eff, bool& /*bonded*/) {
+  static double elastic(const PairParams& p, double u, double r_eff, bool& bonded) {
+    break_when_apart(u, r_eff, bonded);
     return u > 0 ? p.hertz_modulus * std::sqrt(r_eff * u) * u : 0.0;  // eq. H1, hertz_modulus = 4/3 E*
   }
   // The work of eq. H1 from first touch: 2/5 f u = 8/15 E* sqrt(R*) u^(5/2) (eq. H4).

@@ -108,7 +108,7 @@ DEM_AVX2 double cundall_law_avx2(const PairLawArrays a, const MaterialTable& mat
     Mask4 bonded = Bonds ? lanes::mask4(a.bonded[kl[0]], a.bonded[kl[1]], a.bonded[kl[2]], a.bonded[kl[3]]) : Mask4{};
     V3 spring = Model::TangentialModel::in_tangent_plane(load_four(a.spring, kl), c.n);
     Lanes4 mark = simd::gather(a.dashpot, k);
-    const LaneForce<Lanes4> f = Model::evaluate_in_plane(law, c, dt, spring, bonded, mark);  // Cundall bonds never break
+    const LaneForce<Lanes4> f = Model::evaluate_in_plane(law, c, dt, spring, bonded, mark);  // clears bonded where a bond breaks
     const V3 torque_per_radius = cross(c.n, f.tangential);
 
     const int count = std::min(4, m - e);
@@ -116,6 +116,8 @@ DEM_AVX2 double cundall_law_avx2(const PairLawArrays a, const MaterialTable& mat
     alignas(32) double marks[4];
     simd::store_aligned(marks, mark);
     for (int l = 0; l < count; ++l) a.dashpot[kl[l]] = marks[l];
+    if constexpr (Bonds)
+      for (int l = 0; l < count; ++l) a.bonded[kl[l]] = bonded.v[l] != 0;
     // relative_overlap_if_larger's test on every lane with the group's first `worst`: where no lane
     // passes, none can with the larger values the loop below may reach (almost every group).
     const Lanes4 bar = (simd::broadcast(worst) * simd::min(ri, rj)) * simd::broadcast(1 - 1e-9);

@@ -144,9 +144,7 @@ void tile(Simulation& sim, int nx, int ny, int nz, const Vec3& period) {
   sim.set_contacts({}, {});
 }
 
-namespace {
-// Which particles have their centre inside `region`, one byte each. The tests are independent (a
-// mesh region's cost a particle each): in parallel.
+// The tests are independent (a mesh region's cost a particle each): in parallel.
 std::vector<char> centres_inside(const Particles& p, const Region& region) {
   std::vector<char> in(p.size());
   const long n = static_cast<long>(p.size());
@@ -154,7 +152,6 @@ std::vector<char> centres_inside(const Particles& p, const Region& region) {
   for (long k = 0; k < n; ++k) in[k] = region.contains(p.x[k]);
   return in;
 }
-}  // namespace
 
 std::size_t set_fixed(Simulation& sim, const Region* region, bool inside, bool fixed) {
   Particles& p = sim.particles;
@@ -170,27 +167,33 @@ std::size_t set_fixed(Simulation& sim, const Region* region, bool inside, bool f
 }
 
 std::size_t remove_particles(Simulation& sim, const Region& region, bool inside) {
+  std::vector<char> gone = centres_inside(sim.particles, region);
+  if (!inside)
+    for (char& g : gone) g = !g;
+  return remove_marked(sim, gone);
+}
+
+std::size_t remove_marked(Simulation& sim, const std::vector<char>& gone) {
   Particles& p = sim.particles;
-  const std::vector<char> in = centres_inside(p, region);
   std::vector<bool> keep(p.size());
-  std::set<Index> gone;
+  std::set<Index> ids;
   for (std::size_t k = 0; k < p.size(); ++k) {
-    keep[k] = (in[k] != 0) != inside;
-    if (!keep[k]) gone.insert(p.id[k]);
+    keep[k] = !gone[k];
+    if (gone[k]) ids.insert(p.id[k]);
   }
-  if (gone.empty()) return 0;
+  if (ids.empty()) return 0;
   p.keep_only(keep);
   // The contacts of the removed particles go too, so that a checkpoint written now names only
   // particles it holds (a run would drop them at its next neighbour search anyway).
   ContactList pairs, walls;
   const ContactList& pc = sim.pair_contacts();
   for (std::size_t k = 0; k < pc.size(); ++k)
-    if (!gone.count(pc.key_i[k]) && !gone.count(pc.key_j[k])) pairs.push_back_from(pc, k);
+    if (!ids.count(pc.key_i[k]) && !ids.count(pc.key_j[k])) pairs.push_back_from(pc, k);
   const ContactList& wc = sim.wall_contacts();
   for (std::size_t k = 0; k < wc.size(); ++k)
-    if (!gone.count(wc.key_i[k])) walls.push_back_from(wc, k);
+    if (!ids.count(wc.key_i[k])) walls.push_back_from(wc, k);
   sim.set_contacts(std::move(pairs), std::move(walls));
-  return gone.size();
+  return ids.size();
 }
 
 std::pair<Vec3, Vec3> sphere_bounds(const Particles& p) {

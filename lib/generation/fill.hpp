@@ -1,6 +1,7 @@
 #pragma once
 // Model generation (SPEC §9, thesis §3.3): random primary sets and tiled copies.
 #include <random>
+#include <vector>
 
 #include "scene/scene.hpp"
 #include "sim/simulation.hpp"
@@ -20,6 +21,13 @@ void tile(Simulation& sim, int nx, int ny, int nz, const Vec3& period);
 // Removes the particles whose centre is inside `region` (outside it when !inside), and their
 // contacts (SPEC §9 step 4: other shapes come from a box by cutting). Returns how many it removed.
 std::size_t remove_particles(Simulation& sim, const Region& region, bool inside);
+
+// Which particles have their centre inside `region`, one byte per storage slot.
+std::vector<char> centres_inside(const Particles& p, const Region& region);
+
+// Removes the particles whose slot is marked (`gone`, one byte per slot) and their contacts.
+// Returns how many it removed.
+std::size_t remove_marked(Simulation& sim, const std::vector<char>& gone);
 
 // Holds in place (fixed = true: velocity and spin set to zero) or releases the particles whose
 // centre is inside `region` (outside it when !inside; every particle when region is null).

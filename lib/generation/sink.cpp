@@ -11,19 +11,16 @@ namespace dem {
 std::size_t sink_due(Simulation& sim, const SinkSpec& spec, std::int64_t stage_step, SinkTotals& totals) {
   if (stage_step % spec.every != 0) return 0;
   const Particles& p = sim.particles;
-  const long n = static_cast<long>(p.size());
-  std::vector<char> in(p.size());
-#pragma omp parallel for schedule(static)
-  for (long k = 0; k < n; ++k) in[k] = spec.region.contains(p.x[k]);
+  const std::vector<char> in = centres_inside(p, spec.region);
   std::vector<std::pair<Index, double>> gone;  // (id, mass) of the particles in the region
-  for (long k = 0; k < n; ++k)
+  for (std::size_t k = 0; k < p.size(); ++k)
     if (in[k]) gone.emplace_back(p.id[k], p.mass[k]);
   if (gone.empty()) return 0;
   // Summed in id order, not storage order: the total does not depend on how the storage was sorted.
   std::sort(gone.begin(), gone.end());
   for (const auto& [id, m] : gone) totals.mass += m;
   totals.count += static_cast<std::int64_t>(gone.size());
-  remove_particles(sim, spec.region, true);
+  remove_marked(sim, in);
   // The particle count changed: the neighbour list is built again at the next step, the contact
   // history carried over by key (as after an insertion).
   sim.release_contact_views();
