@@ -11,19 +11,12 @@
 
 namespace dem {
 
-namespace {
-constexpr int kFixedBits = 90;
-constexpr double kFixedLimit = 0x1p36;  // [J]: a term beyond it would overflow the fixed point
-}  // namespace
-
-void FixedSum::add(double x) {
-  if (!(std::abs(x) < kFixedLimit))
-    throw PhysicsError("energy log: a term of " + std::to_string(x) + " J in one step, beyond the ledger's range of 6.9e10 J",
+double FixedSum::value() const {
+  if (bad_ != 0)
+    throw PhysicsError("energy log: a term of " + std::to_string(bad_) + " J in one step, beyond the ledger's range of 6.9e10 J",
                        "the run has gone unstable (check the time step), or it is too large for the energy log");
-  sum_ += static_cast<__int128>(std::ldexp(x, kFixedBits));  // truncated towards zero: the same for any order
+  return static_cast<double>(sum_) * 0x1p-90;  // exact: a power of 2, and sum_ is 0 or at least 1
 }
-
-double FixedSum::value() const { return std::ldexp(static_cast<double>(sum_), -kFixedBits); }
 
 double EnergyLedger::scale() const {
   return reference.kinetic_translation + reference.kinetic_rotation + std::abs(reference.elastic_normal) + reference.elastic_tangential +
