@@ -122,22 +122,25 @@ void account_contact(const PairParams& q, const Vec3& f, const Vec3& tpr, const 
                      double dt, ContactTerms& t) {
   const double rate = n.dot(dv_mean);  // du/dt over the step
   const double f_normal = f.dot(n);    // on i along n: < 0 repulsive
-  bool b = bonded;
-  const double f_el = MixedNormal::elastic(q, u, r_eff, b);  // repulsive > 0
+  // The normal law's elastic force (repulsive > 0) and energy at u^n, and where the bond broke this
+  // step, its energy at the half step before, when it still held (eq. P36): one dispatch.
+  double f_el, e, e_broken = 0;
+  with_normal_law(q.law, [&](auto law) {
+    using Law = decltype(law);
+    bool b = bonded;
+    f_el = Law::elastic(q, u, r_eff, b);
+    e = Law::elastic_energy(q, u, r_eff, bonded);
+    if (broke) e_broken = Law::elastic_energy(q, u - 0.5 * n.dot(dv_before) * dt, r_eff, true);
+  });
   // eq. P33: what the normal force did beyond the elastic one: the dashpot (and any clipping of it).
   const double f_damp = -f_normal - f_el;
   t.damping.add(f_damp * rate * dt);
   // eq. P34: the rest of the contact's power, f · (v̄_i - v̄_j) + (n x f_t) · (a_i w̄_i + a_j w̄_j).
   t.tangential_work.add(((f - f_normal * n).dot(dv_mean) + tpr.dot(arm_w)) * dt);
-  const double e = with_normal_law(q.law, [&](auto law) { return decltype(law)::elastic_energy(q, u, r_eff, bonded); });
   // eq. P31: at the half step n+1/2, E(u^n) + ½ f_el(u^n) Δu, Δu the overlap's change to x^{n+1}.
   t.elastic.add(e + 0.5 * f_el * n.dot(dv_now) * dt);
   t.springs.add(with_tangential_law(q, [&](auto law) { return decltype(law)::stored_energy(q, spring, u, r_eff); }));
-  if (broke) {
-    // eq. P36: the bond's energy at the half step before, when it still held.
-    const double u_before = u - 0.5 * n.dot(dv_before) * dt;
-    t.released.add(with_normal_law(q.law, [&](auto law) { return decltype(law)::elastic_energy(q, u_before, r_eff, true); }));
-  }
+  if (broke) t.released.add(e_broken);
 }
 
 }  // namespace
