@@ -182,13 +182,25 @@ TEST(Energy, BalanceOfBondedBlocksCollidingClosesWithinOnePercentAtEveryStep) {
   }
 }
 
+// The ledger's pass is split over the threads (fixed ranges of particles, pairs and wall contacts,
+// each thread its own sums): the bonded blocks, bonds breaking, collide on a floor turning about y,
+// whose contacts take the wall loop and put in work. Exact equality: the sums are integers.
 TEST(Energy, LedgerHasTheSameBitsOnOneAndTwoThreads) {
   std::vector<double> values[2];
   for (int t : {1, 2}) {
     omp_set_num_threads(t);
     Simulation sim = bonded_blocks(0.05);
+    const std::size_t bonds0 = intact_bonds(sim);
+    const double a = 1e-3;  // the blocks' radius: the floor touches their lowest row
+    sim.walls.push_back(Wall{"floor", 0, {Vec3(-0.1, -0.1, -a), Vec3(0.1, -0.1, -a), Vec3(0.1, 0.1, -a), Vec3(-0.1, 0.1, -a)}, {}});
+    WallMotion turn;
+    turn.axis = Vec3::UnitY();
+    turn.angular_speed = 2;
+    sim.walls[0].start_motion(turn, 0);
     double worst = 0;
-    run_checking_balance(sim, 600, worst);
+    run_checking_balance(sim, 1000, worst);  // the blocks meet and break bonds by then
+    EXPECT_LT(intact_bonds(sim), bonds0) << "bonds break";
+    EXPECT_NE(sim.ledger.totals.work_walls, 0.0) << "the floor's contacts count";
     values[t - 1] = sim.ledger.values();
   }
   omp_set_num_threads(omp_get_num_procs());
@@ -251,8 +263,34 @@ TEST(Energy, FixedSumIsTheSameInAnyOrder) {
   for (int k = 5; k >= 0; --k) backward.add(x[k]);
   EXPECT_EQ(forward.value(), backward.value());
   EXPECT_NEAR(forward.value(), 1e-12 + 3.7 - 2.2e3 + 5e-20 + 1.0 / 3 - 7e-9, 1e-12);
-  FixedSum big;
-  EXPECT_THROW(big.add(1e12), PhysicsError);
+  // A term out of range is kept, not thrown (add() may run in a parallel region), and reported by
+  // value(); it reaches a sum it is added into.
+  FixedSum big, total;
+  big.add(1e12);
+  EXPECT_THROW(big.value(), PhysicsError);
+  total.add(big);
+  EXPECT_THROW(total.value(), PhysicsError);
+  FixedSum nan;
+  nan.add(std::nan(""));
+  EXPECT_THROW(nan.value(), PhysicsError);
+}
+
+// Each term is truncated towards zero at 2^-90 J (not rounded, not floored), exactly at any scale
+// (exact comparisons: every figure here is a multiple of 2^-90).
+TEST(Energy, FixedSumTruncatesEachTermTowardsZeroAt2ToTheMinus90) {
+  FixedSum s;
+  s.add(0x1.8p-91);  // 0.75 units: truncated to 0
+  s.add(-0x1.8p-91);
+  EXPECT_EQ(s.value(), 0.0);
+  s.add(0x1.8p-90);   // 1.5 units: 1
+  EXPECT_EQ(s.value(), 0x1p-90);
+  s.add(-0x1.cp-89);  // -3.5 units: -3
+  EXPECT_EQ(s.value(), -0x1p-89);
+  // Large terms: the lowest bit (2^-17 J at 2^35 J) survives, high and low words both counting.
+  FixedSum wide;
+  wide.add(0x1.fffffffffffffp35);  // just under 2^36 J: 126 bits in fixed point
+  wide.add(-0x1.ffffffffffffep35);
+  EXPECT_EQ(wide.value(), 0x1p-17);
 }
 
 }  // namespace

@@ -11,19 +11,12 @@
 
 namespace dem {
 
-namespace {
-constexpr int kFixedBits = 90;
-constexpr double kFixedLimit = 0x1p36;  // [J]: a term beyond it would overflow the fixed point
-}  // namespace
-
-void FixedSum::add(double x) {
-  if (!(std::abs(x) < kFixedLimit))
-    throw PhysicsError("energy log: a term of " + std::to_string(x) + " J in one step, beyond the ledger's range of 6.9e10 J",
+double FixedSum::value() const {
+  if (bad_ != 0)
+    throw PhysicsError("energy log: a term of " + std::to_string(bad_) + " J in one step, beyond the ledger's range of 6.9e10 J",
                        "the run has gone unstable (check the time step), or it is too large for the energy log");
-  sum_ += static_cast<__int128>(std::ldexp(x, kFixedBits));  // truncated towards zero: the same for any order
+  return static_cast<double>(sum_) * 0x1p-90;  // exact: a power of 2, and sum_ is 0 or at least 1
 }
-
-double FixedSum::value() const { return std::ldexp(static_cast<double>(sum_), -kFixedBits); }
 
 double EnergyLedger::scale() const {
   return reference.kinetic_translation + reference.kinetic_rotation + std::abs(reference.elastic_normal) + reference.elastic_tangential +
@@ -59,9 +52,11 @@ void EnergyLedger::from_values(const std::vector<double>& v) {
 }
 
 void Simulation::keep_state_before_motion() {
-  ledger_x_ = particles.x;
-  ledger_v_ = particles.v;
-  ledger_w_ = particles.w;
+  // 72 bytes per particle every step: copied by the threads, each its fixed range of particles.
+  const long n = static_cast<long>(particles.size());
+  ledger_x_.resize(n), ledger_v_.resize(n), ledger_w_.resize(n);
+#pragma omp parallel for schedule(static)
+  for (long k = 0; k < n; ++k) ledger_x_[k] = particles.x[k], ledger_v_[k] = particles.v[k], ledger_w_[k] = particles.w[k];
 }
 
 namespace {
@@ -129,57 +124,72 @@ void account_contact(const PairParams& q, const Vec3& f, const Vec3& tpr, const 
                      double dt, ContactTerms& t) {
   const double rate = n.dot(dv_mean);  // du/dt over the step
   const double f_normal = f.dot(n);    // on i along n: < 0 repulsive
-  bool b = bonded;
-  const double f_el = MixedNormal::elastic(q, u, r_eff, b);  // repulsive > 0
+  // The normal law's elastic force (repulsive > 0) and energy at u^n, and where the bond broke this
+  // step, its energy at the half step before, when it still held (eq. P36): one dispatch.
+  double f_el, e, e_broken = 0;
+  with_normal_law(q.law, [&](auto law) {
+    using Law = decltype(law);
+    bool b = bonded;
+    f_el = Law::elastic(q, u, r_eff, b);
+    e = Law::elastic_energy(q, u, r_eff, bonded);
+    if (broke) e_broken = Law::elastic_energy(q, u - 0.5 * n.dot(dv_before) * dt, r_eff, true);
+  });
   // eq. P33: what the normal force did beyond the elastic one: the dashpot (and any clipping of it).
   const double f_damp = -f_normal - f_el;
   t.damping.add(f_damp * rate * dt);
   // eq. P34: the rest of the contact's power, f · (v̄_i - v̄_j) + (n x f_t) · (a_i w̄_i + a_j w̄_j).
   t.tangential_work.add(((f - f_normal * n).dot(dv_mean) + tpr.dot(arm_w)) * dt);
-  const double e = with_normal_law(q.law, [&](auto law) { return decltype(law)::elastic_energy(q, u, r_eff, bonded); });
   // eq. P31: at the half step n+1/2, E(u^n) + ½ f_el(u^n) Δu, Δu the overlap's change to x^{n+1}.
   t.elastic.add(e + 0.5 * f_el * n.dot(dv_now) * dt);
   t.springs.add(with_tangential_law(q, [&](auto law) { return decltype(law)::stored_energy(q, spring, u, r_eff); }));
-  if (broke) {
-    // eq. P36: the bond's energy at the half step before, when it still held.
-    const double u_before = u - 0.5 * n.dot(dv_before) * dt;
-    t.released.add(with_normal_law(q.law, [&](auto law) { return decltype(law)::elastic_energy(q, u_before, r_eff, true); }));
-  }
+  if (broke) t.released.add(e_broken);
 }
+
+// One thread's share of a step's sums; summed over the threads in FixedSum's integers, so the
+// figures do not depend on how the particles and contacts were split.
+struct StepSums {
+  FixedSum kin_t, kin_r, potential, global, prescribed, fluid;
+  ContactTerms c;
+  void add(const StepSums& o) {
+    kin_t.add(o.kin_t), kin_r.add(o.kin_r), potential.add(o.potential), global.add(o.global);
+    prescribed.add(o.prescribed), fluid.add(o.fluid);
+    c.damping.add(o.c.damping), c.tangential_work.add(o.c.tangential_work), c.released.add(o.c.released), c.walls.add(o.c.walls);
+    c.elastic.add(o.c.elastic), c.springs.add(o.c.springs), c.rolling_work.add(o.c.rolling_work);
+    c.rolling_springs.add(o.c.rolling_springs);
+  }
+};
 
 }  // namespace
 
 void Simulation::account_energy(bool any_fixed) {
   const Particles& p = particles;
-  const std::size_t count = p.size();
+  const long count = static_cast<long>(p.size());
   const Vec3* x0 = ledger_x_.data();
   const Vec3 *v0 = ledger_v_.data(), *w0 = ledger_w_.data();
   auto v_mean = [&](std::size_t k) { return Vec3(0.5 * (v0[k] + p.v[k])); };
   auto w_mean = [&](std::size_t k) { return Vec3(0.5 * (w0[k] + p.w[k])); };
-  FixedSum kin_t, kin_r, potential, global, prescribed, fluid;
   const bool has_fluid = params.fluid.on();
-  for (std::size_t k = 0; k < count; ++k) {
+  auto account_particle = [&](std::size_t k, StepSums& s) {
     const double I = p.inertia(k);
-    kin_t.add(0.5 * p.mass[k] * p.v[k].squaredNorm());
-    kin_r.add(0.5 * I * p.w[k].squaredNorm());
+    s.kin_t.add(0.5 * p.mass[k] * p.v[k].squaredNorm());
+    s.kin_r.add(0.5 * I * p.w[k].squaredNorm());
     // eq. P30: at the mean of x^n and x^{n+1} = x^{n+1} - v^{n+1/2} Δt/2.
-    potential.add(-p.mass[k] * params.gravity.dot(unwrapped_position(k) - 0.5 * dt * p.v[k]));
+    s.potential.add(-p.mass[k] * params.gravity.dot(unwrapped_position(k) - 0.5 * dt * p.v[k]));
     const Vec3 v = v_mean(k), w = w_mean(k);
     // eq. P40: the fluid's force as the force loop took it (x^n, v^{n-1/2}), times the mean velocity.
-    if (has_fluid) fluid.add(params.fluid.force(p.radius[k], p.void_fraction[k], x0[k], v0[k], params.gravity).dot(v) * dt);
+    if (has_fluid) s.fluid.add(params.fluid.force(p.radius[k], p.void_fraction[k], x0[k], v0[k], params.gravity).dot(v) * dt);
     const std::uint8_t fixed = any_fixed ? p.fixed[k] : 0;
     if (fixed == kPrescribed) {
-      prescribed.add(-(block_force_[k].v.dot(v) + block_torque_[k].v.dot(w)) * dt);  // eq. P37
+      s.prescribed.add(-(block_force_[k].v.dot(v) + block_torque_[k].v.dot(w)) * dt);  // eq. P37
     } else if (!fixed) {
       // eq. P35: the integrator's m (v+ - v-) = F Δt - α m v̄ Δt takes α m |v̄|² Δt.
-      global.add((params.alpha_r * p.mass[k] * v.squaredNorm() + params.alpha_theta * I * w.squaredNorm()) * dt);
+      s.global.add((params.alpha_r * p.mass[k] * v.squaredNorm() + params.alpha_theta * I * w.squaredNorm()) * dt);
     }
-  }
-  ContactTerms t;
+  };
   const bool breaks = !ledger_pair_bonded_.empty() || !ledger_wall_bonded_.empty();
-  for (std::size_t k = 0; k < pairs_.size(); ++k) {
+  auto account_pair = [&](std::size_t k, ContactTerms& t) {
     const bool broke = breaks && k < ledger_pair_bonded_.size() && ledger_pair_bonded_[k] && !pairs_.bonded[k];
-    if (!pairs_.active[k] && !broke) continue;
+    if (!pairs_.active[k] && !broke) return;
     const int i = pairs_.slot_i[k], j = pairs_.slot_j[k];
     const Vec3 d = periodic.any() ? separation<true>(periodic, x0[i], x0[j]) : separation<false>(periodic, x0[i], x0[j]);
     const double dist = d.norm();
@@ -190,10 +200,10 @@ void Simulation::account_energy(bool any_fixed) {
                     pairs_.bonded[k], broke, v_mean(i) - v_mean(j), p.radius[i] * w_mean(i) + p.radius[j] * w_mean(j), p.v[i] - p.v[j],
                     v0[i] - v0[j], dt, t);
     account_rolling(q, pairs_.rolling[k], w_mean(i) - w_mean(j), p.w[i] - p.w[j], p.radius[i] + p.radius[j] - dist, r_eff, dt, t);
-  }
-  for (std::size_t k = 0; k < walls_.size(); ++k) {
+  };
+  auto account_wall = [&](std::size_t k, ContactTerms& t) {
     const bool broke = breaks && k < ledger_wall_bonded_.size() && ledger_wall_bonded_[k] && !walls_.bonded[k];
-    if (!walls_.active[k] && !broke) continue;
+    if (!walls_.active[k] && !broke) return;
     const int i = walls_.slot_i[k], w = walls_.slot_j[k];
     const WallGeometry& g = wall_geometry_[w];
     const Vec3 c = closest_point(g, x0[i]);
@@ -212,14 +222,31 @@ void Simulation::account_energy(bool any_fixed) {
       t.walls.add(couple.dot(g.spin) * dt);
       account_rolling(q, couple, w_mean(i) - g.spin, p.w[i] - g.spin, p.radius[i] - dist, p.radius[i], dt, t);
     }
+  };
+  // Each thread its own sums over fixed ranges of the particles and contacts (a term out of range
+  // is kept, not thrown, and reported by value() after the region).
+  StepSums sums;
+  const long pair_count = static_cast<long>(pairs_.size()), wall_count = static_cast<long>(walls_.size());
+#pragma omp parallel
+  {
+    StepSums mine;
+#pragma omp for schedule(static) nowait
+    for (long k = 0; k < count; ++k) account_particle(k, mine);
+#pragma omp for schedule(static) nowait
+    for (long k = 0; k < pair_count; ++k) account_pair(k, mine.c);
+#pragma omp for schedule(static) nowait
+    for (long k = 0; k < wall_count; ++k) account_wall(k, mine.c);
+#pragma omp critical(dem_energy_ledger)
+    sums.add(mine);
   }
+  const ContactTerms& t = sums.c;
   ledger_pair_bonded_.clear();
   ledger_wall_bonded_.clear();
   FibreTerms fibre_terms;
   if (!fibres.empty()) account_fibres(fibres, ledger_fibre_broken_, x0, v0, w0, p, dt, fibre_terms);
 
   EnergyLedger& l = ledger;
-  l.now = EnergyState{kin_t.value(),   kin_r.value(),           potential.value(),           t.elastic.value(),
+  l.now = EnergyState{sums.kin_t.value(), sums.kin_r.value(),     sums.potential.value(),      t.elastic.value(),
                       t.springs.value(), t.rolling_springs.value(), fibre_terms.elastic.value()};
   if (!l.have_reference) {  // the first step accounted is the reference: its own work is not counted
     l.reference = l.now;
@@ -228,10 +255,10 @@ void Simulation::account_energy(bool any_fixed) {
     return;
   }
   EnergyTotals& s = l.totals;
-  const double walls_in = t.walls.value(), prescribed_in = prescribed.value(), fluid_in = fluid.value();
+  const double walls_in = t.walls.value(), prescribed_in = sums.prescribed.value(), fluid_in = sums.fluid.value();
   s.damping_normal += t.damping.value();
   s.tangential_work += t.tangential_work.value();
-  s.global_damping += global.value();
+  s.global_damping += sums.global.value();
   s.released += t.released.value();
   s.work_walls += walls_in;
   s.work_prescribed += prescribed_in;
