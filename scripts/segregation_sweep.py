@@ -23,19 +23,17 @@ from segregation_report import arrival_cycle, load, per_cycle_height, read_track
 
 
 def spread(rows):
-    """The spread over the runs (rows as the table's): how many reach the surface, when, and where
-    the others end."""
-    arrivals = np.array([r[10] for r in rows])
-    reached = arrivals[np.isfinite(arrivals)]
-    stalled = [r for r in rows if not np.isfinite(r[10])]
-    out = [("runs", len(rows)), ("runs_reaching_surface", len(reached)),
-           ("cycles_per_run", min(r[5] for r in rows))]
+    """The spread over the runs (dicts as the table's rows): how many reach the surface, when, and
+    where the others are at the end and how fast they still rise."""
+    reached = np.array([r["reaches_surface_after_cycles"] for r in rows if np.isfinite(r["reaches_surface_after_cycles"])])
+    below = [r for r in rows if not np.isfinite(r["reaches_surface_after_cycles"])]
+    out = [("runs", len(rows)), ("runs_reaching_surface", len(reached)), ("cycles_per_run", min(r["cycles"] for r in rows))]
     if reached.size:
         out += [("arrival_cycles_min", reached.min()), ("arrival_cycles_median", float(np.median(reached))),
                 ("arrival_cycles_max", reached.max())]
-    if stalled:
-        out += [("stalled_centre_highest_min_m", min(r[8] for r in stalled)), ("stalled_centre_highest_max_m", max(r[8] for r in stalled)),
-                ("stalled_centre_last_min_m", min(r[9] for r in stalled)), ("stalled_centre_last_max_m", max(r[9] for r in stalled))]
+    for key in ("centre_highest_m", "centre_last_cycle_m", "centre_rise_last_100_cycles_m"):
+        if below:
+            out += [(f"below_{key[:-2]}_min_m", min(r[key] for r in below)), (f"below_{key[:-2]}_max_m", max(r[key] for r in below))]
     return out
 
 
@@ -67,16 +65,18 @@ def main():
         mid, zc = per_cycle_height(t, z, start["t"], f)
         arrival, stay = arrival_cycle(mid, zc, big_r, surface, small_d)
         amplitude = g * 9.81 / (2 * math.pi * f) ** 2
-        rows.append((name, f, g, amplitude, amplitude / small_d, mid[-1] + 0.5, surface, zc[0], zc.max(), zc[-1], arrival,
-                     arrival / f, stay))
-        print(f"segregation-sweep: {name}: {g:g} g at {f:g} Hz (amplitude {amplitude * 1e3:.2f} mm): "
+        # The rise over the last 100 cycles, from the means of 20 cycles (a cycle's mean still wobbles).
+        late = float(np.mean(zc[-20:]) - np.mean(zc[-120:-100])) if zc.size >= 120 else float("nan")
+        rows.append({"run": name, "frequency_hz": f, "gamma": g, "amplitude_m": amplitude, "amplitude_over_small_diameter": amplitude / small_d,
+                     "cycles": mid[-1] + 0.5, "surface_at_rest_m": surface, "centre_first_cycle_m": zc[0], "centre_highest_m": zc.max(),
+                     "centre_last_cycle_m": zc[-1], "centre_rise_last_100_cycles_m": late, "reaches_surface_after_cycles": arrival,
+                     "reaches_surface_after_s": arrival / f, "fraction_of_later_cycles_at_surface": stay})
+        print(f"segregation: {name}: {g:g} g at {f:g} Hz (amplitude {amplitude * 1e3:.2f} mm): "
               + (f"reaches the surface after {arrival:.0f} cycles ({arrival / f:.1f} s), stays {stay:.0%} of the later cycles"
                  if np.isfinite(arrival) else f"does not reach the surface in {mid[-1] + 0.5:.0f} cycles, "
-                 f"highest {zc.max() * 1e3:.1f} mm, ends at {zc[-1] * 1e3:.1f} mm"))
+                 f"highest {zc.max() * 1e3:.1f} mm, ends at {zc[-1] * 1e3:.1f} mm, {late * 1e3:+.1f} mm in the last 100 cycles"))
         ax.plot(mid, zc * 1e3, lw=1.2, label=f"{name}: {g:g} g, {f:g} Hz (A = {amplitude * 1e3:.1f} mm)")
-    write_csv(a.table, ["run", "frequency_hz", "gamma", "amplitude_m", "amplitude_over_small_diameter", "cycles",
-                        "surface_at_rest_m", "centre_first_cycle_m", "centre_highest_m", "centre_last_cycle_m",
-                        "reaches_surface_after_cycles", "reaches_surface_after_s", "fraction_of_later_cycles_at_surface"], rows)
+    write_csv(a.table, list(rows[0]), [list(r.values()) for r in rows])
     if a.summary:
         write_csv(a.summary, ["key", "value"], spread(rows))
         print("segregation: " + ", ".join(f"{k} {v:.4g}" for k, v in spread(rows)))
@@ -86,7 +86,7 @@ def main():
     ax.set_xlabel("cycles")
     ax.set_ylabel("large sphere's centre, per-cycle mean [mm]")
     ax.set_title(a.title, fontsize=9)
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=7, ncol=2 if len(rows) > 4 else 1)
     save_atomically(fig, a.png)
     plt.close(fig)
 

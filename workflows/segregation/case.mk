@@ -87,11 +87,11 @@ segregation-sweep-outputs: $(SEG_SWEEP_DIR)/sweep.csv
 
 # Rise over several fills (workflows/segregation/seeds.toml): fills that differ only in the
 # generation seed (SEG_SEEDS), each shaken at 3 g and 20 Hz for 700 cycles at the thesis's step
-# under a lid at 0.12 m; about 10 minutes per fill on one core (make -j2 runs two fills at once).
+# under a lid at 0.12 m; about 15 minutes per fill on one core (make -j2 runs two fills at once).
 #   make -f Makefile.cases segregation-seeds [SEG_SEEDS="1 2 3"]
 SEG_SEEDS_SCENE := workflows/segregation/seeds.toml
 SEG_SEEDS_DIR := $(SEG_DIR)/seeds
-SEG_SEEDS ?= 2004 1 2 3 4 5# 2004: the demo's own fill (scene.toml)
+SEG_SEEDS ?= 2004 1 2 3 4 5 6 7# 2004: the demo's own fill (scene.toml)
 
 # One copy of scene.toml per seed, so that each fill's checkpoint records the scene that made it.
 $(SEG_SEEDS_DIR)/fill_%.toml: $(SEG_SCENE)
