@@ -46,7 +46,8 @@ TEST(Restitution, LinearDashpotMatchesTheClosedFormAtFiftyStepsForEveryPhase) {
 }
 
 // An unbonded mendes contact is linear in compression (docs/physics.md P12: f_el = k_n u for
-// u >= 0, its tension needs a bond), so its collisions meet the same closed form and bounds.
+// u >= 0, its tension needs a bond), so its collisions meet the same closed form and bounds. With
+// no bond in the scene it runs as its WithoutBonds law (materials.cpp): this pins that path too.
 TEST(Restitution, UnbondedMendesMatchesTheLinearClosedFormAtFiftySteps) {
   expect_linear_closed_form_at_fifty_steps(NormalLaw::Mendes);
 }
