@@ -1,7 +1,8 @@
 // The normal dashpot in time (docs/contact-laws.md, "The dashpot in time", eq. D1-D5) against the
-// closed forms of the linear spring and dashpot (bench/binary_collision.hpp): binary collisions
-// through the whole step (force loop and leapfrog), two spheres head-on and a sphere on a plane
-// wall, the first touch at four places within a step, at 50 steps per contact.
+// closed forms of the linear spring and dashpot (bench/binary_collision.hpp), for cundall and an
+// unbonded mendes contact (linear in compression): binary collisions through the whole step
+// (force loop and leapfrog), two spheres head-on and a sphere on a plane wall, the first touch at
+// four places within a step, at 50 steps per contact.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -23,20 +24,32 @@ std::string what(bool wall, double eta, double phase) {
 
 // Restitution, contact time and peak overlap within 1 % of the closed form (the bound; the
 // scheme's error at 50 steps is measured at most 0.2 % (docs/contact-laws.md table), so a
-// first-order slip, which costs 4-18 % at this step, fails it) for every eta, phase, pair and wall.
-TEST(Restitution, LinearDashpotMatchesTheClosedFormAtFiftyStepsForEveryPhase) {
+// first-order slip, which costs 4-18 % at this step, fails it) for every eta, phase, pair and wall,
+// with a normal law linear in compression.
+void expect_linear_closed_form_at_fifty_steps(NormalLaw law) {
   for (const bool wall : {false, true})
     for (const double eta : kEtas) {
       const Closed ref = linear_closed_form(1e5, effective_mass(wall), eta, 0.5);
       for (const double phase : kPhases) {
         Shot s;
-        s.wall = wall, s.eta = eta, s.steps = 50, s.t_ref = ref.duration, s.phase = phase;
+        s.law = law, s.wall = wall, s.eta = eta, s.steps = 50, s.t_ref = ref.duration, s.phase = phase;
         const Result r = collide(s);
         EXPECT_NEAR(r.restitution, eta, 0.01 * eta) << what(wall, eta, phase);
         EXPECT_NEAR(r.duration, ref.duration, 0.01 * ref.duration) << what(wall, eta, phase);
         EXPECT_NEAR(r.peak_overlap, ref.peak_overlap, 0.01 * ref.peak_overlap) << what(wall, eta, phase);
       }
     }
+}
+
+TEST(Restitution, LinearDashpotMatchesTheClosedFormAtFiftyStepsForEveryPhase) {
+  expect_linear_closed_form_at_fifty_steps(NormalLaw::Cundall);
+}
+
+// An unbonded mendes contact is linear in compression (docs/physics.md P12: f_el = k_n u for
+// u >= 0, its tension needs a bond), so its collisions meet the same closed form and bounds. With
+// no bond in the scene it runs as its WithoutBonds law (materials.cpp): this pins that path too.
+TEST(Restitution, UnbondedMendesMatchesTheLinearClosedFormAtFiftySteps) {
+  expect_linear_closed_form_at_fifty_steps(NormalLaw::Mendes);
 }
 
 // Second order: halving the step divides the worst restitution error (over the phases) by about

@@ -114,7 +114,7 @@ template <class D, class P, class L, class M>
   // overlap u - |vn| dt > |vn| dt / 2 at the last step: a touch that fell on a step boundary
   // leaves the last step's overlap at round-off, on either side of zero, and may or may not have
   // been a contact there; taken as new, it gets the dashpot's whole impulse from zero.
-  const M none = both(less_or_equal(mark, zero), less_or_equal(zero, mark));
+  const M none = equal(mark, zero);  // one comparison: +0 and -0 alike, a NaN never
   const L before = select(none, only_where(either(bonded, less(L(-1.5) * h * vn, u)), u + half_h * vn), mark);
   const L free = vn + h * (f_el * inv_m);  // the relative normal velocity after the step without the dashpot
   // A parting contact's mark is kept as 1e-300, not 0: should the spheres still touch at the next

@@ -35,14 +35,18 @@ struct LawParams {
         no_viscous_attraction(lanes::mask4(pp[0]->no_viscous_attraction, pp[1]->no_viscous_attraction,
                                            pp[2]->no_viscous_attraction, pp[3]->no_viscous_attraction)) {}
 };
-// What the first `count` of four contacts (k) leave: keep_pair_result's, lane by lane; each vector
-// written with one masked store of its three doubles (nothing written past it).
+// What the first `count` of four contacts (k) leave: keep_pair_result's and the dashpot's mark,
+// lane by lane; each vector written with one masked store of its three doubles (nothing written
+// past it), the marks in the same loop (one loop's overhead, not two).
 DEM_AVX2_INLINE void keep_results(const PairLawArrays& a, const int (&k)[4], int count, const V3& spring, const V3& n,
-                                  const V3& on_i, const V3& torque_per_radius) {
+                                  const V3& on_i, const V3& torque_per_radius, const Lanes4& mark) {
   Lanes4 s[4], f[4], t[4], nl[4];
   simd::per_lane(spring, s), simd::per_lane(on_i, f), simd::per_lane(torque_per_radius, t);
   if (a.keep_normals) simd::per_lane(n, nl);
+  alignas(32) double marks[4];
+  simd::store_aligned(marks, mark);
   for (int l = 0; l < count; ++l) {
+    a.dashpot[k[l]] = marks[l];
     simd::store_xyz(a.spring[k[l]].data(), s[l]);
     simd::store_xyz(a.sum[k[l]].force.data(), f[l]);
     simd::store_xyz(a.sum[k[l]].torque_per_radius.data(), t[l]);
@@ -112,10 +116,7 @@ DEM_AVX2 double cundall_law_avx2(const PairLawArrays a, const MaterialTable& mat
     const V3 torque_per_radius = cross(c.n, f.tangential);
 
     const int count = std::min(4, m - e);
-    keep_results(a, kl, count, spring, c.n, f.on_i, torque_per_radius);
-    alignas(32) double marks[4];
-    simd::store_aligned(marks, mark);
-    for (int l = 0; l < count; ++l) a.dashpot[kl[l]] = marks[l];
+    keep_results(a, kl, count, spring, c.n, f.on_i, torque_per_radius, mark);
     if constexpr (Bonds)
       for (int l = 0; l < count; ++l) a.bonded[kl[l]] = bonded.v[l] != 0;
     // relative_overlap_if_larger's test on every lane with the group's first `worst`: where no lane

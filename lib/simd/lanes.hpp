@@ -18,6 +18,7 @@ namespace dem::lanes {
 // One lane: plain doubles, masks are bools. (Bitwise & on bools: no branch.)
 inline bool less(double a, double b) { return a < b; }
 inline bool less_or_equal(double a, double b) { return a <= b; }
+inline bool equal(double a, double b) { return a == b; }
 inline bool both(bool a, bool b) { return a & b; }
 inline bool either(bool a, bool b) { return a | b; }
 inline bool but_not(bool a, bool b) { return a & !b; }  // a and not b
@@ -76,6 +77,7 @@ DEM_LANE Lanes4 operator/(Lanes4 a, Lanes4 b) { return a.v / b.v; }
 DEM_LANE Lanes4 operator-(Lanes4 a) { return -a.v; }  // exact, as a scalar's -a
 DEM_LANE Mask4 less(Lanes4 a, Lanes4 b) { return {a.v < b.v}; }
 DEM_LANE Mask4 less_or_equal(Lanes4 a, Lanes4 b) { return {a.v <= b.v}; }
+DEM_LANE Mask4 equal(Lanes4 a, Lanes4 b) { return {a.v == b.v}; }
 DEM_LANE Mask4 both(Mask4 a, Mask4 b) { return {a.v & b.v}; }
 DEM_LANE Mask4 either(Mask4 a, Mask4 b) { return {a.v | b.v}; }
 DEM_LANE Mask4 but_not(Mask4 a, Mask4 b) { return {a.v & ~b.v}; }
