@@ -15,6 +15,7 @@
 #include "forces/fluid.hpp"
 #include "forces/void_fraction.hpp"
 #include "run/start_checks.hpp"
+#include "simd/simd.hpp"
 #include "sim/simulation.hpp"
 
 #include "glass.hpp"
@@ -146,6 +147,35 @@ TEST(VoidFraction, RandomPackingAgainstAMonteCarloVolumeCount) {
     }
     const double solid = static_cast<double>(inside) / n, tol = 4 * std::sqrt(solid * (1 - solid) / n);
     EXPECT_NEAR(eps[i], 1 - solid, tol) << "sphere " << i;
+  }
+}
+
+// Without periodic axes the update takes its cell search with a four-wide distance pre-test (or the
+// plain one, DEM_SIMD=off), in parallel above 128 particles: on random spheres in an open box (100
+// and 600, both sides of that cut-off), every eps_i equals the definition P70 summed here over all
+// grains, 1 - sum_j ball_weight(|x_j - x_i|, a_j, c) (j = i at s = 0), to round-off (1e-13), and the
+// plain and four-wide searches give the same bits.
+TEST(VoidFraction, OpenBoxSearchEqualsTheSumOverAllGrains) {
+  const double c = 3e-3;
+  for (const std::size_t count : {100u, 600u}) {
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> u(0, 1);
+    Particles p;
+    const double L = 1e-3 * std::cbrt(static_cast<double>(count) * 10);  // solid fraction about 0.05
+    for (std::size_t k = 0; k < count; ++k) p.add(static_cast<Index>(k), Vec3(L * u(rng), L * u(rng), L * u(rng)), 0.3e-3 + 0.3e-3 * u(rng), 2500, 0);
+    const PeriodicBox open;
+    VoidFractionScratch scratch;
+    std::vector<double> wide, plain;
+    void_fractions(p, open, c, scratch, wide);
+    set_simd_loops(false);
+    void_fractions(p, open, c, scratch, plain);
+    set_simd_loops(simd_loops_available());
+    EXPECT_EQ(wide, plain) << count << " spheres";
+    for (std::size_t i = 0; i < count; ++i) {
+      double solid = 0;
+      for (std::size_t j = 0; j < count; ++j) solid += ball_weight((p.x[j] - p.x[i]).norm(), p.radius[j], c);
+      ASSERT_NEAR(wide[i], 1 - solid, 1e-13) << count << " spheres, sphere " << i;
+    }
   }
 }
 
