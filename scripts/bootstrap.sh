@@ -10,8 +10,8 @@ packages=(
   xvfb xauth
 )
 
-# `bootstrap.sh fuzz`: also clang and its runtime for the libFuzzer targets.
-[ "${1:-}" = fuzz ] && packages+=(clang libclang-rt-14-dev)
+# `bootstrap.sh fuzz`: also clang, its sanitizer runtimes and its OpenMP for the sanitizer build.
+[ "${1:-}" = fuzz ] && packages+=(clang libclang-rt-14-dev libomp-14-dev)
 
 missing=()
 for p in "${packages[@]}"; do

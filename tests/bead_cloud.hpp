@@ -3,6 +3,7 @@
 // the scene of the bit-for-bit tests (thread counts, storage orders, restarts). No time step set.
 #include <random>
 
+#include "draw_vec.hpp"
 #include "generation/fill.hpp"
 #include "glass.hpp"
 #include "sim/simulation.hpp"
@@ -27,7 +28,7 @@ inline Simulation bead_cloud() {
   std::mt19937_64 rng(3);
   fill_random(sim, g, rng);
   std::uniform_real_distribution<double> u(-0.2, 0.2);
-  for (Vec3& v : sim.particles.v) v = Vec3(u(rng), u(rng), u(rng));
+  for (Vec3& v : sim.particles.v) v = draw_vec(u, rng);
   return sim;
 }
 

@@ -19,6 +19,7 @@
 #include "simd/simd.hpp"
 #include "sim/simulation.hpp"
 
+#include "draw_vec.hpp"
 #include "same_bits.hpp"
 
 namespace dem {
@@ -175,7 +176,7 @@ Simulation law_scene() {
   for (std::size_t k = 0; k < sim.particles.size(); ++k) {
     sim.particles.radius[k] *= 1.15;
     sim.particles.mass[k] *= 1.15 * 1.15 * 1.15;
-    sim.particles.v[k] = Vec3(u(rng), u(rng), u(rng));
+    sim.particles.v[k] = draw_vec(u, rng);
     sim.particles.fixed[k] = sim.particles.x[k].z() < 0.25 * L;
     if (sim.particles.fixed[k]) sim.particles.v[k] = Vec3::Zero();
   }

@@ -16,7 +16,7 @@ namespace {
 // One test per coordinate, no branch: Eigen's allFinite per vector was costly (bench/results/design.md).
 inline bool finite_state(const MotionArrays& a, long i) {
   const Vec3 s = (a.x[i] + a.v[i]) + a.w[i];
-  return (std::abs(s.x()) <= DBL_MAX) & (std::abs(s.y()) <= DBL_MAX) & (std::abs(s.z()) <= DBL_MAX);
+  return (int(std::abs(s.x()) <= DBL_MAX) & int(std::abs(s.y()) <= DBL_MAX) & int(std::abs(s.z()) <= DBL_MAX)) != 0;
 }
 
 // Particle i: held, it stops; prescribed, it moves on at its own v and w, whatever its load; free,

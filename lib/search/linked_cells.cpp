@@ -31,13 +31,15 @@ void join_and_release(std::vector<SearchPart>& parts, std::vector<FoundContact>&
 // [first, last) in order: an insertion sort where there are a few (a group holds a handful of
 // candidates, for which std::sort's setup took longer than the sorting: a fifth of the search's
 // time on a settled bed), std::sort beyond.
+// Indices, not pointers: an empty range may be (nullptr, nullptr), where first + 1 is undefined.
 void sort_small(FoundContact* first, FoundContact* last) {
-  if (last - first > 32) return std::sort(first, last);
-  for (FoundContact* q = first + 1; q < last; ++q) {
-    const FoundContact f = *q;
-    FoundContact* r = q;
-    for (; r > first && f < r[-1]; --r) *r = r[-1];
-    *r = f;
+  const std::ptrdiff_t n = last - first;
+  if (n > 32) return std::sort(first, last);
+  for (std::ptrdiff_t q = 1; q < n; ++q) {
+    const FoundContact f = first[q];
+    std::ptrdiff_t r = q;
+    for (; r > 0 && f < first[r - 1]; --r) first[r] = first[r - 1];
+    first[r] = f;
   }
 }
 
