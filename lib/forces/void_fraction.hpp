@@ -40,6 +40,7 @@ class LucyBall {
  private:
   double c_, amp_, f2_, f3_, f4_;  // phi(t) = amp (1 + f2 t^2 + f3 t^3 + f4 t^4), t < c
   double ball_, l0_, l1_, l2_, m0_, m1_;  // 4 pi amp / 3; lap f / 10 = l0 + l1 s + l2 s^2; lap^2 f / 280 = m1 / s + m0
+  double hc0_, hc1_, hc2_;  // shells()'s H(c) = hc0 + hc1 g1 + hc2 g2
 };
 
 // Working storage of void_fractions, kept between calls (no allocation once sized): the grains
