@@ -148,7 +148,7 @@ void void_fractions(const Particles& p, const PeriodicBox& box, double c, VoidFr
     ++sc.cell_first[sc.cell_of[k] + 1];
   }
   for (long q = 0; q < ncell; ++q) sc.cell_first[q + 1] += sc.cell_first[q];
-  // 3 places more, never reached (the four-wide pre-test reads up to 3 past a run's end).
+  // 3 places more, never reached (the four-wide distances read up to 3 past a run's end).
   sc.slot.resize(n), sc.x.resize(n), sc.radius.resize(n), sc.reach2.assign(n + 3, -1);
   sc.x0.assign(n + 3, 0), sc.x1.assign(n + 3, 0), sc.x2.assign(n + 3, 0);
   for (const int k : sc.by_id) {

@@ -52,7 +52,7 @@ struct VoidFractionScratch {
   std::vector<int> slot;        // cell by cell: the grain's slot, its place, radius, (c + radius)^2
   std::vector<Vec3> x;
   std::vector<double> radius, reach2;
-  std::vector<double> x0, x1, x2;  // the places again, one array per axis (the four-wide pre-test)
+  std::vector<double> x0, x1, x2;  // the places again, one array per axis (the four-wide distances)
 };
 
 // eps_i for every particle (storage order), kernel support radius c [m]; pairs through the nearest
