@@ -337,6 +337,44 @@ TEST(FluidDrag, WellPressureGradientIsThatOfTheRadialFlow) {
   EXPECT_EQ(f.pressure_gradient(Vec3(0.55, 0.5, 0)), Vec3::Zero());
 }
 
+// The force loop's fluid force (FluidField::add_forces) four grains at a time against one at a
+// time and against FluidField::force per grain: the same bits (tolerance 0: the same operations on
+// each grain, lanes.hpp), for the well and a uniform gradient, with 23 grains (a remainder past the
+// fours), void fractions on both sides of the switch (groups of four with a Wen & Yu grain fall
+// back to one at a time) and grains inside the well (no gradient).
+TEST(FluidDrag, FourWideForceHasTheBitsOfOneAtATime) {
+  if (!simd_loops_available()) GTEST_SKIP() << "no AVX2 on this processor: only the plain loop runs";
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  Particles p;
+  FluidGrains grains;
+  const int n = 23;
+  grains.resize(n);
+  for (int k = 0; k < n; ++k) {
+    p.add(k, Vec3(0.4 + 0.2 * u(rng), 0.4 + 0.2 * u(rng), 0.1 * u(rng)), 0.5e-3 + 1e-3 * u(rng), 2500, 0);
+    p.v[k] = Vec3(u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5) * 1e-2;
+  }
+  const Vec3 gravity(0, 0, -9.81);
+  for (const FluidParams::Flow flow : {FluidParams::Flow::Well, FluidParams::Flow::Uniform}) {
+    FluidParams f = water();
+    f.flow = flow, f.gradient = Vec3(3e4, -1e4, 2e4);
+    f.well_centre = Vec3(0.5, 0.5, 0), f.well_radius = 0.03, f.drainage_radius = 200, f.drawdown = 15e6;
+    const FluidField field(f);
+    for (int k = 0; k < n; ++k) grains.set(k, field.grain(p.radius[k], k % 7 == 3 ? 0.85 : 0.3 + 0.45 * u(rng)));
+    std::vector<LoadSum> wide(n), plain(n);
+    field.add_forces(grains, p, gravity, 0, n, wide.data(), true);
+    field.add_forces(grains, p, gravity, 0, n, plain.data(), false);
+    int inside = 0;
+    for (int k = 0; k < n; ++k) {
+      const Vec3 alone = field.force(field.grain(p.radius[k], grains.eps[k]), p.x[k], p.v[k], gravity);
+      EXPECT_EQ(wide[k].v, plain[k].v) << "grain " << k;
+      EXPECT_EQ(plain[k].v, alone) << "grain " << k;
+      inside += field.pressure_gradient(p.x[k]) == Vec3::Zero();
+    }
+    if (flow == FluidParams::Flow::Well) EXPECT_GT(inside, 0) << "some grain inside the well";
+  }
+}
+
 // The drag's stability limit (P76-P77): a lone 1 mm glass sphere in a viscous oil (1 Pa s) relaxes
 // in Stokes' time tau = rho_s d^2 / (18 mu) (a closed form, not the code's law); the start check
 // finds it within 1e-4 (the lone grain's void fraction is 1 - 8.75e-6 at c = 100 a, and Wen & Yu's

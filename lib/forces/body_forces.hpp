@@ -13,19 +13,22 @@ namespace dem {
 
 struct BodyForces {
   BodyForces() = default;
-  BodyForces(const Vec3& g, const FluidParams* f, const FluidGrain* grains = nullptr) : gravity(g), fluid_grains(grains) {
+  BodyForces(const Vec3& g, const FluidParams* f, const FluidGrains* grains = nullptr) : gravity(g), fluid_grains(grains) {
     if (f) fluid.emplace(*f);
   }
   Vec3 gravity = Vec3::Zero();  // [m/s^2] (SimParams::gravity)
   // The stage's fluid, or none (a run without one pays a test per block of particles).
   std::optional<FluidField> fluid;
   // Per particle slot, its FluidField::grain at the last void-fraction update (Simulation's).
-  const FluidGrain* fluid_grains = nullptr;
+  const FluidGrains* fluid_grains = nullptr;
 
   // Adds the body forces on a particle of mass m to its force [N].
   void add_to(double mass, Vec3& force) const { force += mass * gravity; }
-  // Adds the fluid's force on particle slot i (fluid_grains filled) [N].
-  void add_fluid(const Particles& p, long i, Vec3& force) const { force += fluid->force(fluid_grains[i], p.x[i], p.v[i], gravity); }
+  // Adds the fluid's force on particle slots [lo, hi) (fluid_grains filled) [N], four at a time
+  // where simd (the same bits).
+  void add_fluid(const Particles& p, long lo, long hi, LoadSum* force, bool simd) const {
+    fluid->add_forces(*fluid_grains, p, gravity, lo, hi, force, simd);
+  }
 };
 
 }  // namespace dem

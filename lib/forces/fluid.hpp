@@ -9,8 +9,12 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "core/types.hpp"
+#include "simd/lanes.hpp"
+#include "state/load_sum.hpp"
+#include "state/particles.hpp"
 
 namespace dem {
 
@@ -81,14 +85,60 @@ inline double interstitial_speed(double eps, double d, double g, double mu, doub
   return wen_yu_speed(eps, d, g, mu, rho);
 }
 
+// What the fluid's force on a grain of Ergun's range (eps < 0.8, P71-P74) needs of its radius and
+// void fraction alone, over a lane type L (simd/lanes.hpp: one grain, or four), worked out once per
+// void-fraction update: a step's force then takes one division besides the pressure field's.
+template <class L>
+struct ErgunGrain {
+  L viscous, inertial;          // Ergun's beta / (1 - eps) = viscous + inertial w (P72)
+  L twice_share, viscous2, reach;  // 2 share, viscous^2, 4 inertial share: Ergun::speed_per_gradient's constants (P74)
+  L volume, displaced;          // V_p [m^3], rho_f V_p [kg]
+};
+
+// The fluid's force on an Ergun grain g where the pressure gradient is gp, moving at v, under
+// gravity [N] (P71): Ergun::speed_per_gradient's flow (P74; none where gp = 0), the drag at the slip
+// from it. Written once over L: the same operations, so the same bits, one grain or four at a time.
+template <class L>
+[[gnu::always_inline]] inline lanes::Triple<L> ergun_force(const ErgunGrain<L>& g, const lanes::Triple<L>& gp, const lanes::Triple<L>& v,
+                                                           const lanes::Triple<L>& gravity) {
+  const L gn = lanes::root(lanes::dot(gp, gp));
+  const L per_gradient = g.twice_share / (g.viscous + lanes::root(g.viscous2 + g.reach * gn));
+  const lanes::Triple<L> slip = lanes::only_where(lanes::less(L(0.0), gn), (-per_gradient) * gp) - v;
+  const L drag = g.viscous + g.inertial * lanes::root(lanes::dot(slip, slip));
+  return ((g.volume * drag) * slip - g.volume * gp) - g.displaced * gravity;
+}
+
 // What the fluid's force on one grain (P71-P74) needs of its radius a and void fraction eps alone,
-// worked out once per void-fraction update (Simulation keeps one per particle): a step's force then
-// takes no division but the pressure field's and the flow speed's.
+// worked out once per void-fraction update: a step's force then takes no division but the pressure
+// field's and the flow speed's.
 struct FluidGrain {
   double eps = 1, d = 0;              // the void fraction and the diameter (Wen & Yu's path)
   double volume = 0, displaced = 0;   // V_p [m^3], rho_f V_p [kg]
   double share = 0;                   // flow_share(eps) (P74)
   Ergun ergun{0.5, 1, 0, 0};          // eps < 0.8: Ergun's terms at eps
+  // Its constants for ergun_force (eps < 0.8), each as Ergun::speed_per_gradient rounds it.
+  ErgunGrain<double> lane() const {
+    return {ergun.viscous, ergun.inertial, 2 * share, ergun.viscous * ergun.viscous, 4 * ergun.inertial * share, volume, displaced};
+  }
+};
+
+// Every particle's FluidGrain, by storage slot, one array per constant (the four-wide force loads
+// four slots' at once; FluidField::add_forces).
+struct FluidGrains {
+  std::vector<double> eps, d, viscous, inertial, twice_share, viscous2, reach, volume, displaced;
+  long size() const { return static_cast<long>(eps.size()); }
+  void resize(long n) {
+    for (auto* a : {&eps, &d, &viscous, &inertial, &twice_share, &viscous2, &reach, &volume, &displaced}) a->resize(n);
+  }
+  void clear() { resize(0); }
+  void set(long i, const FluidGrain& g) {
+    const ErgunGrain<double> e = g.lane();
+    eps[i] = g.eps, d[i] = g.d, viscous[i] = e.viscous, inertial[i] = e.inertial, twice_share[i] = e.twice_share;
+    viscous2[i] = e.viscous2, reach[i] = e.reach, volume[i] = e.volume, displaced[i] = e.displaced;
+  }
+  ErgunGrain<double> ergun(long i) const {
+    return {viscous[i], inertial[i], twice_share[i], viscous2[i], reach[i], volume[i], displaced[i]};
+  }
 };
 
 // The fluid of a stage ([stage.fluid], docs/scene.md): its properties, the pressure field and the
@@ -124,11 +174,17 @@ class FluidField {
   Vec3 pressure_gradient(const Vec3& x) const {
     if (f_.flow == FluidParams::Flow::Uniform) return f_.gradient;
     if (f_.flow != FluidParams::Flow::Well) return Vec3::Zero();
-    Vec3 r = x - f_.well_centre;
-    r -= r.dot(f_.well_axis) * f_.well_axis;
-    const double r2 = r.squaredNorm();
-    if (r2 < f_.well_radius * f_.well_radius) return Vec3::Zero();
-    return well_scale_ / r2 * r;  // dp/dr r_hat, dp/dr = dp / (ln(re/rw) r)
+    return lanes::vec3(well_gradient(lanes::triple(x)));
+  }
+  // The well's grad p (P75) at x, over a lane type L: dp/dr r_hat, dp/dr = dp / (ln(re/rw) r).
+  template <class L>
+  [[gnu::always_inline]] lanes::Triple<L> well_gradient(const lanes::Triple<L>& x) const {
+    const Vec3 &c = f_.well_centre, &e = f_.well_axis;
+    const lanes::Triple<L> axis{L(e.x()), L(e.y()), L(e.z())};
+    lanes::Triple<L> r = x - lanes::Triple<L>{L(c.x()), L(c.y()), L(c.z())};
+    r = r - lanes::dot(r, axis) * axis;
+    const L r2 = lanes::dot(r, r), zero(0.0);
+    return lanes::select(lanes::less(r2, L(f_.well_radius * f_.well_radius)), lanes::Triple<L>{zero, zero, zero}, (L(well_scale_) / r2) * r);
   }
 
   // The constants of grain of radius a and void fraction eps.
@@ -154,11 +210,19 @@ class FluidField {
   // from the flow at x.
   Vec3 force(const FluidGrain& g, const Vec3& x, const Vec3& v, const Vec3& gravity) const {
     const Vec3 gp = pressure_gradient(x);
-    const Vec3 slip = flow(g, gp) - v;
-    const double w = slip.norm();
-    const double drag = g.eps < kErgunWenYuSwitch ? g.ergun.drag(w) : drag_per_volume(g.eps, g.d, w, f_.viscosity, f_.density);
-    return g.volume * drag * slip - g.volume * gp - g.displaced * gravity;
+    if (g.eps < kErgunWenYuSwitch) return lanes::vec3(ergun_force(g.lane(), lanes::triple(gp), lanes::triple(v), lanes::triple(gravity)));
+    return wen_yu_force(g.eps, g.d, g.volume, g.displaced, gp, v, gravity);
   }
+  // force() of Wen & Yu's range (eps >= 0.8), where the pressure gradient is gp.
+  Vec3 wen_yu_force(double eps, double d, double volume, double displaced, const Vec3& gp, const Vec3& v, const Vec3& gravity) const {
+    const double gn = gp.norm();
+    const Vec3 slip = (gn > 0 ? Vec3(-(interstitial_speed(eps, d, gn, f_.viscosity, f_.density) / gn) * gp) : Vec3::Zero()) - v;
+    const double drag = drag_per_volume(eps, d, slip.norm(), f_.viscosity, f_.density);
+    return volume * drag * slip - volume * gp - displaced * gravity;
+  }
+  // Adds the fluid's force on slots [lo, hi) of p, grains g by slot, to force [N]: four at a time
+  // where simd (simd_loops_on()) and four neighbours are all of Ergun's range, the same bits.
+  void add_forces(const FluidGrains& g, const Particles& p, const Vec3& gravity, long lo, long hi, LoadSum* force, bool simd) const;
   // The same for a grain of radius a with local void fraction eps.
   Vec3 force(double a, double eps, const Vec3& x, const Vec3& v, const Vec3& gravity) const { return force(grain(a, eps), x, v, gravity); }
 

@@ -265,8 +265,7 @@ double finish_block(const ForceLoopInput& in, const ContactList& pc, ContactList
   for (int q = in.wall_block_first[b]; q < in.wall_block_first[b + 1]; ++q)
     worst = std::max(worst, wall_run<Model>(in, wc, out, in.wall_run_order[q], scratch));
   for (long i = lo; i < hi; ++i) out.body.add_to(p.mass[i], out.force[i].v);
-  if (out.body.fluid)
-    for (long i = lo; i < hi; ++i) out.body.add_fluid(p, i, out.force[i].v);
+  if (out.body.fluid) out.body.add_fluid(p, lo, hi, out.force.data(), out.simd);
   return worst;
 }
 

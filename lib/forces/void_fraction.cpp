@@ -17,7 +17,8 @@ namespace dem {
 LucyBall::LucyBall(double c)
     : c_(c), amp_(LucyKernel(c / std::sqrt(12.0)).amplitude()), f2_(-6 / (c * c)), f3_(8 / (c * c * c)), f4_(-3 / (c * c * c * c)),
       ball_(4 * std::numbers::pi / 3 * amp_), l0_(6 * f2_ / 10), l1_(12 * f3_ / 10), l2_(20 * f4_ / 10), m0_(120 * f4_ / 280),
-      m1_(24 * f3_ / 280) {}
+      m1_(24 * f3_ / 280), hc0_(c * c * c * c * (-1.0 / 4 + c * c * (-f2_ / 6 + c * (-f3_ / 7 - c * f4_ / 8)))),
+      hc1_(c * c * (1.0 / 2 + c * c * (f2_ / 4 + c * (f3_ / 5 + c * f4_ / 6)))), hc2_(c * c * c * (1.0 / 3 + c * c * (f2_ / 5 + c * (f3_ / 6 + c * f4_ / 7)))) {}
 
 double LucyBall::shells(double s, double a) const {
   // phi(t) / amp = f(t) = 1 + f2 t^2 + f3 t^3 + f4 t^4 for t < c (Lucy's polynomial, P70).
@@ -38,7 +39,9 @@ double LucyBall::shells(double s, double a) const {
     const double H1 = g1 / 2, H2 = g2 / 3, H3 = (-1 + f2_ * g1) / 4, H4 = (f2_ * g2 + f3_ * g1) / 5,
                  H5 = (-f2_ + f3_ * g2 + f4_ * g1) / 6, H6 = (-f3_ + f4_ * g2) / 7, H7 = -f4_ / 8;
     auto H = [&](double t) { return t * t * (H1 + t * (H2 + t * (H3 + t * (H4 + t * (H5 + t * (H6 + t * H7)))))); };
-    w += std::numbers::pi / s * (H(t1) - H(t0));
+    // At t1 = c (the ball cut by the support's edge: most calls) H is linear in g1 and g2, its
+    // coefficients the update's: H(c) = hc0 + hc1 g1 + hc2 g2.
+    w += std::numbers::pi / s * ((t1 == c_ ? hc0_ + hc1_ * g1 + hc2_ * g2 : H(t1)) - H(t0));
   }
   return amp_ * w;
 }
@@ -55,30 +58,34 @@ void each_reached(const VoidFractionScratch& sc, const PeriodicBox& box, int m, 
   const bool periodic = box.any();
   for (int r = 0; r < count; ++r)
     for (int q = runs[r][0]; q < runs[r][1]; ++q) {
-      const double s2 = (periodic ? box.nearest(sc.x[q] - xm) : Vec3(sc.x[q] - xm)).squaredNorm();
+      const Vec3 d = periodic ? box.nearest(sc.x[q] - xm) : Vec3(sc.x[q] - xm);
+      const double s2 = (d.x() * d.x() + d.y() * d.y()) + d.z() * d.z();  // each_reached_four's order
       if (s2 < sc.reach2[q] && q != m) visit(q, std::sqrt(s2));
     }
 }
 
 #ifdef DEM_SIMD_LOOPS
-// each_reached without periodic axes, four places at a time: a pre-test of the distances with a
-// margin far above round-off, the plain test deciding those that pass it (so both find exactly the
-// same grains, in the same order). The arrays hold 3 places more than there are grains.
+// each_reached without periodic axes, four places at a time: each distance by the same operations
+// in the same order as each_reached's (so both find exactly the same grains, in the same order,
+// and pass the same bits). The arrays hold 3 places more than there are grains.
 template <class Visit>
 DEM_AVX2 void each_reached_four(const VoidFractionScratch& sc, int m, const int (*runs)[2], int count, Visit&& visit) {
   using lanes::Lanes4;
   const Vec3 xm = sc.x[m];
   const Lanes4 x0 = simd::broadcast(xm.x()), x1 = simd::broadcast(xm.y()), x2 = simd::broadcast(xm.z());
-  const Lanes4 margin = simd::broadcast(1 + 1e-12);
+  alignas(32) double s[4];
   for (int r = 0; r < count; ++r)
     for (int q = runs[r][0]; q < runs[r][1]; q += 4) {
       const Lanes4 d0 = simd::load(sc.x0.data() + q) - x0, d1 = simd::load(sc.x1.data() + q) - x1, d2 = simd::load(sc.x2.data() + q) - x2;
-      int hits = simd::bits(lanes::less((d0 * d0 + d1 * d1) + d2 * d2, simd::load(sc.reach2.data() + q) * margin));
+      const Lanes4 s2 = (d0 * d0 + d1 * d1) + d2 * d2;
+      int hits = simd::bits(lanes::less(s2, simd::load(sc.reach2.data() + q)));
       hits &= (1 << std::min(4, runs[r][1] - q)) - 1;
+      if (m >= q && m < q + 4) hits &= ~(1 << (m - q));
+      if (!hits) continue;
+      simd::store_aligned(s, lanes::root(s2));
       for (; hits; hits &= hits - 1) {
-        const int k = q + __builtin_ctz(hits);
-        const double s2 = Vec3(sc.x[k] - xm).squaredNorm();
-        if (s2 < sc.reach2[k] && k != m) visit(k, std::sqrt(s2));
+        const int l = __builtin_ctz(hits);
+        visit(q + l, s[l]);
       }
     }
 }
@@ -141,7 +148,7 @@ void void_fractions(const Particles& p, const PeriodicBox& box, double c, VoidFr
     ++sc.cell_first[sc.cell_of[k] + 1];
   }
   for (long q = 0; q < ncell; ++q) sc.cell_first[q + 1] += sc.cell_first[q];
-  // 3 places more, never reached (the four-wide pre-test reads up to 3 past a run's end).
+  // 3 places more, never reached (the four-wide distances read up to 3 past a run's end).
   sc.slot.resize(n), sc.x.resize(n), sc.radius.resize(n), sc.reach2.assign(n + 3, -1);
   sc.x0.assign(n + 3, 0), sc.x1.assign(n + 3, 0), sc.x2.assign(n + 3, 0);
   for (const int k : sc.by_id) {

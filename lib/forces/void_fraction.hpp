@@ -40,6 +40,7 @@ class LucyBall {
  private:
   double c_, amp_, f2_, f3_, f4_;  // phi(t) = amp (1 + f2 t^2 + f3 t^3 + f4 t^4), t < c
   double ball_, l0_, l1_, l2_, m0_, m1_;  // 4 pi amp / 3; lap f / 10 = l0 + l1 s + l2 s^2; lap^2 f / 280 = m1 / s + m0
+  double hc0_, hc1_, hc2_;  // shells()'s H(c) = hc0 + hc1 g1 + hc2 g2
 };
 
 // Working storage of void_fractions, kept between calls (no allocation once sized): the grains
@@ -51,7 +52,7 @@ struct VoidFractionScratch {
   std::vector<int> slot;        // cell by cell: the grain's slot, its place, radius, (c + radius)^2
   std::vector<Vec3> x;
   std::vector<double> radius, reach2;
-  std::vector<double> x0, x1, x2;  // the places again, one array per axis (the four-wide pre-test)
+  std::vector<double> x0, x1, x2;  // the places again, one array per axis (the four-wide distances)
 };
 
 // eps_i for every particle (storage order), kernel support radius c [m]; pairs through the nearest

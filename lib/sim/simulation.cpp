@@ -48,7 +48,7 @@ void Simulation::compute_forces() {
   block_torque_.resize(particles.size());
   const bool fluid = params.fluid.on();
   if (fluid) update_fluid_grains();
-  const BodyForces body{params.gravity, fluid ? &params.fluid : nullptr, fluid_grains_.data()};
+  const BodyForces body{params.gravity, fluid ? &params.fluid : nullptr, &fluid_grains_};
   ForceBlocks loads{params.load_block, block_first_, block_needs_, needed_from_, by_key_start_, by_key_, force_times_,
                     block_done_,       ++force_epoch_, body,       simd_loops_on(), block_force_, block_torque_};
   const double worst_overlap = compute_contact_forces(in, choose_force_variant(materials, has_bonds()), pairs_, walls_, loads);
@@ -69,13 +69,13 @@ void Simulation::update_fluid_grains() {
     fluid_grains_.clear();
   }
   const double mu = params.fluid.viscosity, rho = params.fluid.density;
-  if (static_cast<long>(fluid_grains_.size()) == n && fluid_grains_for_[0] == mu && fluid_grains_for_[1] == rho) return;
+  if (fluid_grains_.size() == n && fluid_grains_for_[0] == mu && fluid_grains_for_[1] == rho) return;
   // Each grain's from its radius and void fraction alone: a resumed run rebuilds the same bits.
   const FluidField field(params.fluid);
   fluid_grains_.resize(n);
   fluid_grains_for_[0] = mu, fluid_grains_for_[1] = rho;
 #pragma omp parallel for schedule(static) if (n > 1024)
-  for (long i = 0; i < n; ++i) fluid_grains_[i] = field.grain(particles.radius[i], particles.void_fraction[i]);
+  for (long i = 0; i < n; ++i) fluid_grains_.set(i, field.grain(particles.radius[i], particles.void_fraction[i]));
 }
 
 const ContactList& Simulation::pair_contacts() const {

@@ -204,7 +204,7 @@ class Simulation {
   // Per slot, FluidField::grain of its radius and void fraction (the force's constants), for the
   // fluid's viscosity and density in fluid_grains_for_; emptied when the void fractions are
   // recomputed or the storage is sorted, and rebuilt from them before the force loop.
-  std::vector<FluidGrain> fluid_grains_;
+  FluidGrains fluid_grains_;
   double fluid_grains_for_[2] = {0, 0};
   // While ledger.on: the state before the motion, and the bonds before the force loop (those that
   // broke this step release their energy).
