@@ -18,6 +18,7 @@
 #include "io/checkpoint.hpp"
 #include "post/stress.hpp"
 #include "sim/simulation.hpp"
+#include "simd/simd.hpp"
 
 #include "bead_cloud.hpp"
 #include "glass.hpp"
@@ -304,6 +305,39 @@ TEST(Fibres, LongFibresGiveTheSameBitsForThreadsStorageAndRestart) {
   for (int n = 0; n < steps / 2; ++n) back.advance();
   omp_set_num_threads(1);
   expect_same(plain, finish(back), "restarted from a checkpoint half way");
+}
+
+// The four-wide loops (rotate_ties, add_fibre_forces: simd/simd.hpp) against the plain ones, bit for
+// bit, on the fibre cloud: segments slack, pulled and breaking (weak fibres), fours that hold a
+// broken segment, and a particle removed part way (its ties gone, their segments broken).
+TEST(Fibres, FourWideLoopsGiveThePlainBits) {
+  if (!simd_loops_available()) GTEST_SKIP() << "no AVX2: only the plain loops run here";
+  omp_set_num_threads(1);
+  for (const double strength : {3e6, 3e5}) {
+    std::vector<FibreRun> runs;
+    std::size_t broken = 0, pulled = 0;
+    for (const bool wide : {false, true}) {
+      set_simd_loops(wide);
+      Simulation sim = fibre_cloud();
+      sim.fibres.strength.assign(sim.fibres.fibres(), strength);
+      sim.fibres.index();
+      for (int n = 0; n < 400; ++n) {
+        if (n == 200) {  // the particle of the first fibre's second tie leaves
+          std::vector<char> gone(sim.particles.size());
+          for (std::size_t k = 0; k < gone.size(); ++k) gone[k] = sim.particles.id[k] == sim.fibres.tie_id[1];
+          ASSERT_EQ(remove_marked(sim, gone), 1u);
+        }
+        sim.advance();
+        for (double t : sim.fibres.tension) pulled += t > 0;
+      }
+      broken = sim.fibres.broken_count();
+      runs.push_back(finish(std::move(sim)));
+    }
+    set_simd_loops(true);
+    expect_same(runs[0], runs[1], "four-wide against plain, strength " + std::to_string(strength));
+    EXPECT_GT(pulled, 0u) << "the comparison must see segments pulling";
+    if (strength < 1e6) EXPECT_GT(broken, 1u) << "the weak fibres must break (the removed particle breaks one)";
+  }
 }
 
 }  // namespace

@@ -35,6 +35,7 @@ struct FibreSet {
   std::vector<double> tension;          // T of the last force computation [N] (output, not state)
   std::vector<int> tie_of, fibre_of;    // derived (index())
   std::vector<double> stiffness;        // derived: EA/L0 [N/m], so that a step divides by nothing
+  std::vector<double> breaking;         // derived: sigma_t A [N], the tension at which it breaks (eq. P62)
   std::vector<int> tie_slot;            // derived: each tie's particle's storage slot, -1: gone
 
   std::size_t fibres() const { return area.size(); }
@@ -46,7 +47,7 @@ struct FibreSet {
   // length per segment, none broken.
   void add(const std::vector<std::pair<Index, Vec3>>& ties, const std::vector<double>& rest_lengths, double area_, double modulus_,
            double strength_);
-  // Rebuilds tie_of, fibre_of, stiffness and sizes tension and tie_slot (after add or a checkpoint read).
+  // Rebuilds tie_of, fibre_of, stiffness, breaking and sizes tension and tie_slot (after add or a checkpoint read).
   void index();
   // Finds each tie's slot again if any no longer holds its particle (checked every step, O(ties));
   // segments next to a tie whose particle is gone break. Allocates only when it searches.
@@ -58,7 +59,7 @@ struct FibreSet {
   // Elastic energy of the intact segments: sum EA/(2 L0) (L - L0)^2 for L > L0 [J].
   double elastic_energy(const Particles& p, const PeriodicBox& box) const;
   // Tensile strength of segment s as a force, sigma_t A [N].
-  double break_force(int s) const { return strength[fibre_of[s]] * area[fibre_of[s]]; }
+  double break_force(int s) const { return breaking[s]; }
   std::size_t broken_count() const;
   // The stiffest intact segment's EA/L0 [N/m] (0 with none): it joins eq. P5's K_max.
   double max_stiffness() const;

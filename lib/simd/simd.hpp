@@ -1,8 +1,9 @@
 #pragma once
 // The four-wide versions (AVX2, where the processor has it) of the force loop, the integration
-// (integrate/motion.cpp), the rebuild check (search/largest_move.cpp) and the search's distance pre-test
-// (search/linked_cells.cpp): whether they run, and how they are marked. Each does per contact or
-// particle the same operations in the same order as the plain loop it stands for, so both give
+// (integrate/motion.cpp), the rebuild check (search/largest_move.cpp), the search's distance pre-test
+// (search/linked_cells.cpp) and the fibres (forces/fibres.cpp): whether they run, and how they are
+// marked. Each does per contact, particle, tie or segment the same operations in the same order as
+// the plain loop it stands for, so both give
 // the same bits (IEEE 754 rounds each operation alike in a vector lane and in a scalar register;
 // no fused multiply-add is enabled, so none is contracted). Their operations are the layer's:
 // lanes.hpp (lane types and arithmetic), lanes_avx2.hpp (what needs AVX2 instructions of its
