@@ -139,15 +139,13 @@ DEM_AVX2 long pull_four_at_a_time(FibreSet& fibres, const Particles& p, const Pe
     // FibreSet::span's order: the centres' difference, then the offsets'.
     const Triple<Lanes4> d = (simd::load_four(x, ib[0], ib[1], ib[2], ib[3]) - simd::load_four(x, ia[0], ia[1], ia[2], ia[3])) + (ob - oa);
     const Lanes4 length = lanes::root(lanes::dot(d, d));
-    const Lanes4 stretch = length - simd::load(fibres.rest.data() + s);
-    const lanes::Mask4 taut = lanes::less(zero, stretch);
-    const Lanes4 t = lanes::only_where(taut, simd::load(fibres.stiffness.data() + s) * stretch);  // eq. P60-P61
+    const Lanes4 t = segment_tension(simd::load(fibres.stiffness.data() + s), simd::load(fibres.rest.data() + s), length);  // eq. P60-P61
     if (simd::bits(lanes::less(simd::load(fibres.breaking.data() + s), t))) {  // eq. P62: one breaks
       for (long u = s; u < s + 4; ++u) pull_segment(fibres, u, fibres.span(p, box, tie_of[u], tie_of[u] + 1), force, torque);
       continue;
     }
     simd::store(fibres.tension.data() + s, t);
-    const int pulling = simd::bits(taut);
+    const int pulling = simd::bits(lanes::less(zero, t));  // pull_segment's t != 0
     if (!pulling) continue;  // all four slack
     const Triple<Lanes4> on_a = (t / length) * d;
     Lanes4 f[4], ta[4], tb[4];

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/types.hpp"
+#include "simd/lanes.hpp"
 #include "state/load_sum.hpp"
 #include "state/particles.hpp"
 #include "state/periodic.hpp"
@@ -66,10 +67,12 @@ struct FibreSet {
 };
 
 // Eq. P60-P61: the tension [N] of a segment of stiffness k = EA/L0 (FibreSet::stiffness), rest
-// length L0 and present length L: k (L - L0) when stretched, 0 when slack.
-inline double segment_tension(double stiffness, double rest, double length) {
-  const double stretch = length - rest;
-  return stretch > 0 ? stiffness * stretch : 0.0;
+// length L0 and present length L: k (L - L0) when stretched, 0 when slack. Written once over a
+// lane type L (simd/lanes.hpp: one segment, or four).
+template <class L>
+[[gnu::always_inline]] inline L segment_tension(const L& stiffness, const L& rest, const L& length) {
+  const L stretch = length - rest;
+  return lanes::only_where(lanes::less(L(0.0), stretch), stiffness * stretch);
 }
 
 // Each segment's tension into fibres.tension, as the force loop would find it at this state (0
