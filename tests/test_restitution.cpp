@@ -2,11 +2,15 @@
 // closed forms of the linear spring and dashpot (bench/binary_collision.hpp), for cundall and an
 // unbonded mendes contact (linear in compression): binary collisions through the whole step
 // (force loop and leapfrog), two spheres head-on and a sphere on a plane wall, the first touch at
-// four places within a step, at 50 steps per contact.
+// four places within a step, at 50 steps per contact; and a bonded mendes pair's small swing.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <numbers>
 #include <string>
+#include <vector>
 
 #include "../bench/binary_collision.hpp"
 
@@ -50,6 +54,72 @@ TEST(Restitution, LinearDashpotMatchesTheClosedFormAtFiftyStepsForEveryPhase) {
 // no bond in the scene it runs as its WithoutBonds law (materials.cpp): this pins that path too.
 TEST(Restitution, UnbondedMendesMatchesTheLinearClosedFormAtFiftySteps) {
   expect_linear_closed_form_at_fifty_steps(NormalLaw::Mendes);
+}
+
+// A bonded mendes pair swinging about its bond length (docs/physics.md, after the damping table):
+// linear k_n in compression, T(s) of P12 in tension, whose slope at s = 0 is k_n (L - 1). At an
+// amplitude s << 1/A (here 1e-4/A: T departs from the line by L A s / (2 (L - 1)), 6e-5) it is a
+// bilinear spring, each half cycle a damped linear oscillator (binary_collision.hpp's closed form):
+// compression with k_n and eta, tension with k_n (L - 1) and the same dashpot, damping ratio
+// gamma / sqrt(L - 1). Checked at 50 steps per (tension) half cycle, the shorter: both halves'
+// durations, the peaks' ratio, and the decay of the peak over a whole swing, eta times the tension
+// half's restitution, within 1 % (the unbonded test's bound; round-off at this amplitude, 1e-19 m in
+// 1e-10 m, is far below).
+TEST(Restitution, BondedMendesSwingsAsItsBilinearClosedFormAtFiftySteps) {
+  for (const double eta : {0.3, 0.5, 0.9}) {
+    Material m;
+    m.name = "bonded";
+    m.law = NormalLaw::Mendes;
+    m.density = kDensityA;
+    m.kn = m.kt = 1e5;
+    m.friction_angle = 0;
+    m.restitution = eta;
+    m.restitution_t = 1;
+    m.tensile_strength = 1;
+    m.epsilon = 1e-4;
+    Simulation sim;
+    sim.materials = MaterialTable({m}, {});
+    sim.params.gravity = Vec3::Zero();
+    const PairParams& p = sim.materials.pair(0, 0);
+    ASSERT_TRUE(p.mendes_tension);
+    const double L = p.mendes_D * p.mendes_A, m_eff = mass(kA, kDensityA) / 2;
+    const double gamma2 = damping_ratio(eta) / std::sqrt(L - 1), s2 = std::sqrt(1 - gamma2 * gamma2);
+    const double eta2 = std::exp(-gamma2 * std::numbers::pi / s2);  // the tension half's restitution
+    const double w2 = std::sqrt(p.kn * (L - 1) / m_eff);
+    const double v = 1e-4 / p.mendes_A * w2 / eta;  // the tension half's peak about 1e-4 / A
+    const Closed press = linear_closed_form(p.kn, m_eff, eta, v), pull = linear_closed_form(p.kn * (L - 1), m_eff, eta2, eta * v);
+    const Closed press2 = linear_closed_form(p.kn, m_eff, eta, eta * eta2 * v);
+    sim.dt = pull.duration / 50;
+    sim.particles.add(0, Vec3(-kA, 0, 0), kA, kDensityA, 0);
+    sim.particles.add(1, Vec3(kA, 0, 0), kA, kDensityA, 0);
+    sim.particles.v[0] = Vec3(v / 2, 0, 0);  // touching, approaching at v
+    sim.particles.v[1] = Vec3(-v / 2, 0, 0);
+    ASSERT_EQ(sim.bond_present_contacts(false, 1e-9), 1u);
+    // The zero crossings of the overlap (linear within a step; the first, the start, at the first
+    // step) and each half's largest |overlap|: peak[1] the first compression, peak[2] the first
+    // tension, peak[3] the second compression, peak[4] the second tension.
+    const auto overlap = [&] { return 2 * kA - (sim.particles.x[1] - sim.particles.x[0]).norm(); };
+    std::vector<double> cross, peak{0};
+    double before = overlap();
+    for (int n = 0; n < 2000 && cross.size() < 5; ++n) {
+      sim.advance();
+      const double now = overlap();
+      if ((before > 0) != (now > 0)) cross.push_back(sim.time - sim.dt * now / (now - before)), peak.push_back(0);
+      peak.back() = std::max(peak.back(), std::abs(now));
+      before = now;
+    }
+    ASSERT_EQ(cross.size(), 5u) << "eta " << eta << ": the bond must hold and the pair swing";
+    // The halves after the first, and the peaks as ratios: free of the start (the bond begins at a
+    // step, the velocity given there is a half step's).
+    EXPECT_NEAR(cross[2] - cross[1], pull.duration, 0.01 * pull.duration) << "eta " << eta;
+    EXPECT_NEAR(cross[3] - cross[2], press.duration, 0.01 * press.duration) << "eta " << eta;
+    const double ratio = press2.peak_overlap / pull.peak_overlap;
+    EXPECT_NEAR(peak[3] / peak[2], ratio, 0.01 * ratio) << "eta " << eta;
+    EXPECT_NEAR(peak[4] / peak[2], eta * eta2, 0.01 * eta * eta2) << "eta " << eta;
+    std::printf("  bonded mendes, eta %.1f: tension half %+.1e, compression half %+.1e, peaks %+.1e, swing's decay %+.1e\n", eta,
+                (cross[2] - cross[1]) / pull.duration - 1, (cross[3] - cross[2]) / press.duration - 1, peak[3] / peak[2] / ratio - 1,
+                peak[4] / peak[2] / (eta * eta2) - 1);
+  }
 }
 
 // Second order: halving the step divides the worst restitution error (over the phases) by about

@@ -66,6 +66,10 @@ DEM_AVX2 double cundall_law_avx2(const PairLawArrays a, const MaterialTable& mat
   // One material: the same parameters for every contact, set once.
   const PairParams* only[4] = {&materials.pair(0, 0), &materials.pair(0, 0), &materials.pair(0, 0), &materials.pair(0, 0)};
   LawParams law(only);
+  // The materials of i and j in each lane whose pair `law` holds: reread only where they change
+  // (almost never: a scene of few materials has runs of contacts of one pair).
+  const bool many_materials = materials.size() > 1;
+  simd::Ints4 law_i{}, law_j{};
   double worst = 0;
   // Fetched into the cache ahead: the velocities of both particles of the contacts kAhead on (pass
   // 1 read only their positions), where a random packing's particles no longer fit the core's
@@ -103,10 +107,15 @@ DEM_AVX2 double cundall_law_avx2(const PairLawArrays a, const MaterialTable& mat
       c.m_eff = lanes::select(lanes::mask4(fixed[il[0]], fixed[il[1]], fixed[il[2]], fixed[il[3]]), mj,
                               lanes::select(lanes::mask4(fixed[jl[0]], fixed[jl[1]], fixed[jl[2]], fixed[jl[3]]), mi, c.m_eff));
     }
-    if (materials.size() > 1) {
-      const PairParams* pp[4];
-      for (int l = 0; l < 4; ++l) pp[l] = &materials.pair(a.material[il[l]], a.material[jl[l]]);
-      law = LawParams(pp);
+    if (many_materials) {
+      const simd::Ints4 mat_i = simd::gather(a.material, i), mat_j = simd::gather(a.material, j);
+      if (!(simd::same(mat_i, law_i) && simd::same(mat_j, law_j))) {
+        alignas(16) int ml_i[4], ml_j[4];
+        simd::store_aligned(ml_i, mat_i), simd::store_aligned(ml_j, mat_j);
+        const PairParams* pp[4];
+        for (int l = 0; l < 4; ++l) pp[l] = &materials.pair(ml_i[l], ml_j[l]);
+        law = LawParams(pp), law_i = mat_i, law_j = mat_j;
+      }
     }
     // Without bonds (Bonds false: no contact of the scene holds one) every lane's flag is false.
     Mask4 bonded = Bonds ? lanes::mask4(a.bonded[kl[0]], a.bonded[kl[1]], a.bonded[kl[2]], a.bonded[kl[3]]) : Mask4{};

@@ -14,8 +14,8 @@ namespace dem::simd {
 using lanes::Lanes4;
 using lanes::Mask4;
 
-// a in every lane: one vbroadcastsd (lanes.hpp's Lanes4(a), compiled for the default target, is
-// split into 16-byte halves before it is inlined: vunpcklpd and vperm2f128, and no folding).
+// a in every lane: one vbroadcastsd (lanes.hpp's Lanes4(a) gives the same bits with one
+// vpbroadcastq, in the integer domain).
 DEM_AVX2_INLINE Lanes4 broadcast(double a) { return _mm256_set1_pd(a); }
 
 // One bit per lane, lane 0 lowest: to branch on, or to count.

@@ -22,6 +22,9 @@ struct Ints4 {
   __m128i v;
 };
 
+// Whether every lane of a equals b's.
+DEM_AVX2_INLINE bool same(Ints4 a, Ints4 b) { return _mm_movemask_epi8(_mm_cmpeq_epi32(a.v, b.v)) == 0xffff; }
+
 DEM_AVX2_INLINE Lanes4 load(const double* p) { return _mm256_loadu_pd(p); }
 DEM_AVX2_INLINE Ints4 load(const int* p) { return {_mm_loadu_si128(reinterpret_cast<const __m128i*>(p))}; }
 DEM_AVX2_INLINE void store(double* p, Lanes4 a) { _mm256_storeu_pd(p, a.v); }
