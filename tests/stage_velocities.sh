@@ -11,17 +11,14 @@ bin=$1 src=$(cd "$2" && pwd) py=$3
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 source "$src/catch_checkpoint.sh"
 scene=$src/data/velocities.toml
-"$bin/gen-primary" --scene "$scene" --out "$tmp/start.h5" --quiet
-OMP_NUM_THREADS=1 "$bin/run-stage" --scene "$scene" --stage pull --in "$tmp/start.h5" --out "$tmp/full.h5" 2> "$tmp/full.log"
+# With a periodic checkpoint from the middle of the stage, resumed below after the run that wrote it ended.
+full_and_cut "$scene" pull 4000
 cat "$tmp/full.log"
 grep -q "stage pull: bonded 3 contacts" "$tmp/full.log" || { echo "FAIL: the touching pair and floor contacts were not bonded"; exit 1; }
 grep -q "set the velocity of 1 particles (material \"B2\")" "$tmp/full.log" || { echo "FAIL: set_velocity report"; exit 1; }
 grep -q "prescribed the velocity of 1 particles (ids 1 to 1)" "$tmp/full.log" || { echo "FAIL: prescribe report"; exit 1; }
 grep -q "force on the 1 prescribed particles at the end" "$tmp/full.log" || { echo "FAIL: no force on the prescribed group"; exit 1; }
 
-# A periodic checkpoint from the middle of the stage, resumed after the run that wrote it ended.
-catch_checkpoint "$tmp/cut.restart.h5" "$tmp/mid.h5" -- env OMP_NUM_THREADS=2 "$bin/run-stage" --scene "$scene" --stage pull --in "$tmp/start.h5" --out "$tmp/cut.h5" --checkpoint-every 4000 --quiet
-"$py" "$src/compare_checkpoints.py" "$tmp/full.h5" "$tmp/cut.h5" > /dev/null || { echo "FAIL: two threads differ from one"; exit 1; }
 cp "$tmp/mid.h5" "$tmp/cut.restart.h5"
 rm "$tmp/cut.h5"
 OMP_NUM_THREADS=2 "$bin/run-stage" --scene "$scene" --stage pull --in "$tmp/start.h5" --out "$tmp/cut.h5" --checkpoint-every 4000 --restart --quiet
