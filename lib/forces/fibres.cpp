@@ -87,10 +87,14 @@ namespace {
 
 using lanes::Triple;
 
-// Segment s (intact, its ties' slots resolved) with its span d from tie a to tie b (eq. P60-P62):
-// its tension into fibres.tension, and T e on a's particle at its tie point, -T e on b's, each with
-// its torque offset x force, added in this order.
-inline void pull_segment(FibreSet& fibres, long s, const Vec3& d, std::vector<LoadSum>& force, std::vector<LoadSum>& torque) {
+// Segment s, its ties' slots resolved (eq. P60-P62): nothing if broken; else its tension into
+// fibres.tension, and T e on a's particle at its tie point, -T e on b's, each with its torque
+// offset x force, added in this order.
+inline void pull_segment(FibreSet& fibres, const Particles& p, const PeriodicBox& box, long s, std::vector<LoadSum>& force,
+                         std::vector<LoadSum>& torque) {
+  if (fibres.broken[s]) return;
+  const int a = fibres.tie_of[s], b = a + 1;
+  const Vec3 d = fibres.span(p, box, a, b);
   const double length = d.norm();
   const double t = segment_tension(fibres.stiffness[s], fibres.rest[s], length);  // eq. P60-P61
   if (t > fibres.breaking[s]) {  // eq. P62: breaks, for ever
@@ -101,7 +105,6 @@ inline void pull_segment(FibreSet& fibres, long s, const Vec3& d, std::vector<Lo
   fibres.tension[s] = t;
   if (t == 0) return;  // slack: no force in compression
   const Vec3 on_a = (t / length) * d;  // towards b
-  const int a = fibres.tie_of[s], b = a + 1;
   const int ia = fibres.tie_slot[a], ib = fibres.tie_slot[b];
   force[ia].v += on_a;
   torque[ia].v += fibres.tie_offset[a].cross(on_a);
@@ -128,8 +131,7 @@ DEM_AVX2 long pull_four_at_a_time(FibreSet& fibres, const Particles& p, const Pe
     std::memcpy(&any_broken, fibres.broken.data() + s, 4);
     const int a[4] = {tie_of[s], tie_of[s + 1], tie_of[s + 2], tie_of[s + 3]};
     if (any_broken) {
-      for (long u = s; u < s + 4; ++u)
-        if (!fibres.broken[u]) pull_segment(fibres, u, fibres.span(p, box, tie_of[u], tie_of[u] + 1), force, torque);
+      for (long u = s; u < s + 4; ++u) pull_segment(fibres, p, box, u, force, torque);
       continue;
     }
     const int ia[4] = {slot[a[0]], slot[a[1]], slot[a[2]], slot[a[3]]};
@@ -141,7 +143,7 @@ DEM_AVX2 long pull_four_at_a_time(FibreSet& fibres, const Particles& p, const Pe
     const Lanes4 length = lanes::root(lanes::dot(d, d));
     const Lanes4 t = segment_tension(simd::load(fibres.stiffness.data() + s), simd::load(fibres.rest.data() + s), length);  // eq. P60-P61
     if (simd::bits(lanes::less(simd::load(fibres.breaking.data() + s), t))) {  // eq. P62: one breaks
-      for (long u = s; u < s + 4; ++u) pull_segment(fibres, u, fibres.span(p, box, tie_of[u], tie_of[u] + 1), force, torque);
+      for (long u = s; u < s + 4; ++u) pull_segment(fibres, p, box, u, force, torque);
       continue;
     }
     simd::store(fibres.tension.data() + s, t);
@@ -173,8 +175,7 @@ void add_fibre_forces(FibreSet& fibres, const Particles& p, const PeriodicBox& b
 #ifdef DEM_SIMD_LOOPS
   if (simd_loops_on() && !box.any()) s = pull_four_at_a_time(fibres, p, box, force, torque);
 #endif
-  for (; s < segments; ++s)
-    if (!fibres.broken[s]) pull_segment(fibres, s, fibres.span(p, box, fibres.tie_of[s], fibres.tie_of[s] + 1), force, torque);
+  for (; s < segments; ++s) pull_segment(fibres, p, box, s, force, torque);
 }
 
 void compute_fibre_tensions(FibreSet& fibres, const Particles& p, const PeriodicBox& box) {

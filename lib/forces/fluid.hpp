@@ -26,16 +26,24 @@ inline constexpr double kFlowVoidMax = 0.95;
 // Schiller & Naumann's drag coefficient of a sphere at particle Reynolds number re (P73).
 inline double schiller_naumann_cd(double re) { return re < 1000 ? 24 / re * (1 + 0.15 * std::pow(re, 0.687)) : 0.44; }
 
+// Ergun's slip speed per unit pressure gradient (P74): the root w of inertial w^2 + viscous w =
+// share g, over g, written without cancellation as 2 share / (viscous + sqrt(viscous^2 + 4 inertial
+// share g)), from its constants 2 share, viscous, viscous^2 and 4 inertial share. Written once over
+// a lane type L (simd/lanes.hpp: Ergun::speed_per_gradient, and ergun_force one grain or four).
+template <class L>
+[[gnu::always_inline]] inline L ergun_speed_per_gradient(const L& twice_share, const L& viscous, const L& viscous2, const L& reach, const L& g) {
+  return twice_share / (viscous + lanes::root(viscous2 + reach * g));
+}
+
 // Ergun's beta / (1 - eps) (P72, eps < 0.8) as viscous + inertial w, for void fraction eps, grain
 // diameter d, fluid viscosity mu and density rho; and the slip speed at which it carries a given
 // drag per unit particle volume (P74).
 struct Ergun {
   Ergun(double eps, double d, double mu, double rho) : viscous(150 * (1 - eps) / eps * mu / (d * d)), inertial(1.75 * rho / d) {}
   double drag(double w) const { return viscous + inertial * w; }
-  // The speed w at which drag(w) w = share g, divided by g > 0: the root of inertial w^2 + viscous w
-  // = share g, written without cancellation.
+  // The speed w at which drag(w) w = share g, divided by g > 0.
   double speed_per_gradient(double share, double g) const {
-    return 2 * share / (viscous + std::sqrt(viscous * viscous + 4 * inertial * share * g));
+    return ergun_speed_per_gradient(2 * share, viscous, viscous * viscous, 4 * inertial * share, g);
   }
   double viscous, inertial;  // [kg/(m^3 s)], [kg/m^4]
 };
@@ -102,7 +110,7 @@ template <class L>
 [[gnu::always_inline]] inline lanes::Triple<L> ergun_force(const ErgunGrain<L>& g, const lanes::Triple<L>& gp, const lanes::Triple<L>& v,
                                                            const lanes::Triple<L>& gravity) {
   const L gn = lanes::root(lanes::dot(gp, gp));
-  const L per_gradient = g.twice_share / (g.viscous + lanes::root(g.viscous2 + g.reach * gn));
+  const L per_gradient = ergun_speed_per_gradient(g.twice_share, g.viscous, g.viscous2, g.reach, gn);
   const lanes::Triple<L> slip = lanes::only_where(lanes::less(L(0.0), gn), (-per_gradient) * gp) - v;
   const L drag = g.viscous + g.inertial * lanes::root(lanes::dot(slip, slip));
   return ((g.volume * drag) * slip - g.volume * gp) - g.displaced * gravity;
@@ -201,9 +209,13 @@ class FluidField {
   Vec3 flow(const FluidGrain& g, const Vec3& gp) const {
     const double gn = gp.norm();
     if (!(gn > 0)) return Vec3::Zero();
-    const double per_gradient = g.eps < kErgunWenYuSwitch ? g.ergun.speed_per_gradient(g.share, gn)
-                                                          : interstitial_speed(g.eps, g.d, gn, f_.viscosity, f_.density) / gn;
-    return -per_gradient * gp;
+    if (g.eps < kErgunWenYuSwitch) return -g.ergun.speed_per_gradient(g.share, gn) * gp;
+    return wen_yu_flow(g.eps, g.d, gp);
+  }
+  // flow() of Wen & Yu's range (eps >= 0.8), grain diameter d.
+  Vec3 wen_yu_flow(double eps, double d, const Vec3& gp) const {
+    const double gn = gp.norm();
+    return gn > 0 ? Vec3(-(interstitial_speed(eps, d, gn, f_.viscosity, f_.density) / gn) * gp) : Vec3::Zero();
   }
 
   // The fluid's force on grain g at x moving at v, under gravity [N] (P71): the drag at the slip
@@ -215,8 +227,7 @@ class FluidField {
   }
   // force() of Wen & Yu's range (eps >= 0.8), where the pressure gradient is gp.
   Vec3 wen_yu_force(double eps, double d, double volume, double displaced, const Vec3& gp, const Vec3& v, const Vec3& gravity) const {
-    const double gn = gp.norm();
-    const Vec3 slip = (gn > 0 ? Vec3(-(interstitial_speed(eps, d, gn, f_.viscosity, f_.density) / gn) * gp) : Vec3::Zero()) - v;
+    const Vec3 slip = wen_yu_flow(eps, d, gp) - v;
     const double drag = drag_per_volume(eps, d, slip.norm(), f_.viscosity, f_.density);
     return volume * drag * slip - volume * gp - displaced * gravity;
   }
