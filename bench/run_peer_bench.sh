@@ -10,7 +10,7 @@
 #   any of "hertz hertz-rolling" (Hertz-Mindlin, alone or with EPSD2 / sds rolling resistance:
 #   bench/hertz_models.hpp, inputs bench/peers/in.SCENE_hertz.CODE -var rolling 0|1), written to
 #   bench/results/peers_hertz_runs.csv and peers_hertz.md instead, e.g.
-#   bash bench/run_peer_bench.sh 3 "settle:10000:10000 chute:32000:2000" "hertz hertz-rolling"
+#   bash bench/run_peer_bench.sh 3 "settle:10000:20000 chute:32000:2000" "hertz hertz-rolling"
 # Needs: apt-get install lammps liggghts openmpi-bin time (done here when run as root).
 set -euo pipefail
 cd "$(dirname "$0")/.."
