@@ -5,7 +5,9 @@
 
 #include <chrono>
 #include <cstdio>
+#include <string>
 
+#include "contact/model_table.hpp"
 #include "sim/simulation.hpp"
 
 namespace dem::bench {
@@ -23,13 +25,17 @@ inline double rotational_energy(const Simulation& sim) {
 }
 
 // walls, particles, steps, threads, loop seconds, particle-steps per second, contacts, kinetic
-// energies, peak resident memory (and its increase since `rss_before`).
+// energies, peak resident memory (and its increase since `rss_before`), the laws of the first
+// material with itself (normal/tangential/rolling).
 inline void print_run(const Simulation& sim, long steps, int threads, double loop, long rss_before) {
   const long rss = peak_rss_kb();
-  std::printf("walls %zu particles %zu steps %ld threads %d loop_s %.4f psps %.4g contacts %zu ke %.10g rke %.10g rss_kb %ld rss_increase_kb %ld\n",
+  const PairParams& p = sim.materials.pair(0, 0);
+  std::printf("walls %zu particles %zu steps %ld threads %d loop_s %.4f psps %.4g contacts %zu ke %.10g rke %.10g rss_kb %ld rss_increase_kb %ld "
+              "laws %s/%s/%s\n",
               sim.walls.size(), sim.particles.size(), steps, threads, loop, sim.particles.size() * static_cast<double>(steps) / loop,
               sim.pair_contact_count() + sim.wall_contact_count(), sim.kinetic_energy() - rotational_energy(sim),
-              rotational_energy(sim), rss, rss - rss_before);
+              rotational_energy(sim), rss, rss - rss_before, std::string(normal_law_name(p.law)).c_str(),
+              std::string(tangential_law_name(p.tangential)).c_str(), std::string(rolling_law_name(p.rolling)).c_str());
 }
 
 // Runs `steps` steps of `sim` on `threads` threads (set before the scene was built, as the

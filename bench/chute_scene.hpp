@@ -50,9 +50,28 @@ inline MaterialTable chute_materials() {
   return MaterialTable({free, base}, {}, {on_base});
 }
 
-inline Simulation chute_scene(int nx = kChuteNx, int ny = kChuteNy) {
+// Hertz variants (hertz_models.hpp): E = 2e7, nu = 0.3 (E* = 1.1e7), restitution 0.9 (as the
+// linear scene's 0.91), friction 0.5, rolling friction 0.1. The Hertz force over overlap,
+// 4/3 E* sqrt(R* u), is kn = 2e5 at u = 7.5e-4 d, and the contact of a pair meeting at speed 1 lasts
+// t_c = 2.87 (m*^2 / (R* E*^2 v))^(1/5) = 3.4e-3 (the linear one: 3.6e-3): dt = 1e-4 as before.
+// On the frozen base the peers take m* = m (ours m/2): the ratios there are sqrt(2) larger.
+constexpr HertzBead kChuteHertz{1, 2e7, 0.3, 0.9, 0.5, 0.1};
+
+inline MaterialTable chute_hertz_materials(ContactModel model) {
+  Material free = hertz_material("bead", kChuteHertz, model), base = free;
+  base.name = "base";
+  const Material on_base = hertz_material("on_base", kChuteHertz, model, 2);
+  PairOverride pair;
+  pair.a = 0;
+  pair.b = 1;
+  pair.set("restitution", on_base.restitution);
+  pair.set("tangential_restitution", on_base.restitution_t);
+  return MaterialTable({free, base}, {}, {pair});
+}
+
+inline Simulation chute_scene(int nx = kChuteNx, int ny = kChuteNy, ContactModel model = ContactModel::Linear) {
   Simulation sim;
-  sim.materials = chute_materials();
+  sim.materials = model == ContactModel::Linear ? chute_materials() : chute_hertz_materials(model);
   const double angle = kChuteAngle * std::numbers::pi / 180;
   sim.params.gravity = Vec3(std::sin(angle), 0, -std::cos(angle));  // LAMMPS: fix gravity 1.0 chute 26.0
   sim.params.skin = 0.1;

@@ -3,15 +3,22 @@
 # falling into a box) and the chute scene (32,000 spheres flowing down a periodic chute), in one
 # session on one machine: every configuration REPS times, interleaved, 1 and 2 threads/processes.
 # Writes bench/results/peers_runs.csv (every run) and bench/results/peers.md (medians and ratios).
-# Usage: bash bench/run_peer_bench.sh [REPS] [SCENES]   (from anywhere; about 40 minutes on 2 cores
-#   with REPS=3; SCENES, default "settle:10000:20000 settle:100000:2500 chute:32000:6000",
-#   each SCENE:PARTICLES:STEPS; runs of other scenes already in peers_runs.csv are kept)
+# Usage: bash bench/run_peer_bench.sh [REPS] [SCENES] [MODELS]   (from anywhere; about 40 minutes on
+#   2 cores with REPS=3; SCENES, default "settle:10000:20000 settle:100000:2500 chute:32000:6000",
+#   each SCENE:PARTICLES:STEPS; runs of other scenes already in the runs file are kept)
+# MODELS: "linear" (default: the scenes' linear spring-dashpot, inputs bench/peers/in.SCENE.CODE) or
+#   any of "hertz hertz-rolling" (Hertz-Mindlin, alone or with EPSD2 / sds rolling resistance:
+#   bench/hertz_models.hpp, inputs bench/peers/in.SCENE_hertz.CODE -var rolling 0|1), written to
+#   bench/results/peers_hertz_runs.csv and peers_hertz.md instead, e.g.
+#   bash bench/run_peer_bench.sh 3 "settle:10000:20000 chute:32000:2000" "hertz hertz-rolling"
 # Needs: apt-get install lammps liggghts openmpi-bin time (done here when run as root).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$PWD
 reps=${1:-3}
 scenes=${2:-"settle:10000:20000 settle:100000:2500 chute:32000:6000"}
+models=${3:-linear}
+out=peers; [ "$models" = linear ] || out=peers_hertz
 make -f Makefile.cases build > /dev/null
 cmake --build build --target settle_bench chute_bench -- --no-print-directory > /dev/null
 missing=""
@@ -23,23 +30,24 @@ fi
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_btl_vader_single_copy_mechanism=none
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-cp bench/peers/in.settle.* bench/peers/in.chute.* "$work/"
-csv=bench/results/peers_runs.csv
+cp bench/peers/in.settle* bench/peers/in.chute* "$work/"
+csv=bench/results/${out}_runs.csv
 mkdir -p bench/results
-echo "scene,code,procs,particles,steps,loop_s,psps,peak_rss_kb,rep,date" > "$csv.tmp"
+echo "scene,code,procs,particles,steps,loop_s,psps,peak_rss_kb,rep,date,model" > "$csv.tmp"
 today=$(date -u +%Y-%m-%d)
 
 # One run: prints "loop_seconds peak_rss_kb" (peak RSS of the largest process).
-run_one() {  # code procs scene N steps
-  local code=$1 np=$2 scene=$3 n=$4 steps=$5 log="$work/log" t="$work/time"
+run_one() {  # code procs scene N steps model
+  local code=$1 np=$2 scene=$3 n=$4 steps=$5 model=$6 log="$work/log" t="$work/time"
   case $code in
     dem) local bench=("$root/build/bench/settle_bench" run "$n"); [ "$scene" = chute ] && bench=("$root/build/bench/chute_bench" run)
-         OMP_NUM_THREADS=$np /usr/bin/time -v -o "$t" "${bench[@]}" "$steps" "$np" > "$log"
+         OMP_NUM_THREADS=$np /usr/bin/time -v -o "$t" "${bench[@]}" "$steps" "$np" "$model" > "$log"
          awk '{for (i = 1; i < NF; i++) if ($i == "loop_s") print $(i + 1)}' "$log" | tr '\n' ' ' ;;
     lammps|liggghts)
          local exe=lmp; [ "$code" = liggghts ] && exe=liggghts
          local launch=(); [ "$np" -gt 1 ] && launch=(mpirun -np "$np" --bind-to none)
-         (cd "$work" && /usr/bin/time -v -o "$t" "${launch[@]}" "$exe" -in "in.$scene.$code" -var N "$n" -var nsteps "$steps" -log none > "$log" 2>&1)
+         local input=("in.$scene.$code"); [ "$model" = linear ] || input=("in.${scene}_hertz.$code" -var rolling "$([ "$model" = hertz-rolling ] && echo 1 || echo 0)")
+         (cd "$work" && /usr/bin/time -v -o "$t" "${launch[@]}" "$exe" -in "${input[@]}" -var N "$n" -var nsteps "$steps" -log none > "$log" 2>&1)
          awk '/^Loop time of/ {print $4}' "$log" | tr '\n' ' ' ;;
   esac
   awk -F: '/Maximum resident set size/ {gsub(/ /, "", $2); print $2}' "$t"
@@ -56,10 +64,12 @@ for spec in $scenes; do
   label="$scene $n"; [ "$scene" = chute ] && label=chute
   for rep in $(seq 1 "$reps"); do
     for np in 1 2; do
-      for code in dem lammps liggghts; do
-        read -r loop rss < <(run_one "$code" "$np" "$scene" "$n" "$steps")
-        psps=$(awk -v n="$n" -v s="$steps" -v t="$loop" 'BEGIN {printf "%.4g", n * s / t}')
-        echo "$label,$code,$np,$n,$steps,$loop,$psps,$rss,$rep,$today" | tee -a "$csv.tmp"
+      for model in $models; do
+        for code in dem lammps liggghts; do
+          read -r loop rss < <(run_one "$code" "$np" "$scene" "$n" "$steps" "$model")
+          psps=$(awk -v n="$n" -v s="$steps" -v t="$loop" 'BEGIN {printf "%.4g", n * s / t}')
+          echo "$label,$code,$np,$n,$steps,$loop,$psps,$rss,$rep,$today,$model" | tee -a "$csv.tmp"
+        done
       done
     done
   done
@@ -73,6 +83,8 @@ if [ -f "$csv" ]; then
   done >> "$csv.tmp"
 fi
 mv "$csv.tmp" "$csv"
-/usr/bin/python3 bench/summarize_peers.py "$csv" > bench/results/peers.md.tmp
-mv bench/results/peers.md.tmp bench/results/peers.md
-cat bench/results/peers.md
+/usr/bin/python3 bench/summarize_peers.py "$csv" > "bench/results/$out.md.tmp"
+# A hand-written analysis at the end of the file (from "## Where our time goes" on) is kept.
+[ -f "bench/results/$out.md" ] && sed -n '/^## Where our time goes/,$p' "bench/results/$out.md" >> "bench/results/$out.md.tmp"
+mv "bench/results/$out.md.tmp" "bench/results/$out.md"
+cat "bench/results/$out.md"

@@ -1,8 +1,10 @@
 // The settle benchmark for our code (bench/run_peer_bench.sh runs it beside LAMMPS and LIGGGHTS):
-//   settle_bench run N STEPS THREADS      runs the scene of bench/settle_scene.hpp for STEPS steps and
+//   settle_bench run N STEPS THREADS [MODEL]
+//                                         runs the scene of bench/settle_scene.hpp for STEPS steps and
 //                                         prints one line: N, steps, threads, loop seconds,
 //                                         particle-steps per second, contacts, kinetic energies,
-//                                         peak resident memory
+//                                         peak resident memory; MODEL linear (default), hertz or
+//                                         hertz-rolling (settle_scene.hpp, hertz_models.hpp)
 //   settle_bench mesh N STEPS THREADS T   the same with the floor made of about T triangles (a
 //                                         rectangle mesh, as an STL floor would be): the price of a
 //                                         fine mesh wall against one plane
@@ -35,10 +37,11 @@ namespace {
 
 using bench::peak_rss_kb;
 
-int run(long n, long steps, int threads, long floor_triangles = 0, long shuffled_sort_every = -1) {
+int run(long n, long steps, int threads, long floor_triangles = 0, long shuffled_sort_every = -1,
+        bench::ContactModel model = bench::ContactModel::Linear) {
   omp_set_num_threads(threads);
   const long rss_before = peak_rss_kb();
-  Simulation sim = bench::settle_scene(bench::settle_size(n));
+  Simulation sim = bench::settle_scene(bench::settle_size(n), 0.5, true, model);
   if (shuffled_sort_every >= 0) {
     std::vector<std::size_t> order(sim.particles.size());
     std::iota(order.begin(), order.end(), 0);
@@ -63,7 +66,9 @@ int run(long n, long steps, int threads, long floor_triangles = 0, long shuffled
 
 int main(int argc, char** argv) {
   try {
-    if (argc == 5 && std::strcmp(argv[1], "run") == 0) return run(std::atol(argv[2]), std::atol(argv[3]), std::atoi(argv[4]));
+    if ((argc == 5 || argc == 6) && std::strcmp(argv[1], "run") == 0)
+      return run(std::atol(argv[2]), std::atol(argv[3]), std::atoi(argv[4]), 0, -1,
+                 bench::contact_model_named(argc == 6 ? argv[5] : "linear"));
     if (argc == 6 && std::strcmp(argv[1], "mesh") == 0)
       return run(std::atol(argv[2]), std::atol(argv[3]), std::atoi(argv[4]), std::atol(argv[5]));
     if (argc == 6 && std::strcmp(argv[1], "shuffled") == 0)
@@ -78,6 +83,6 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "settle_bench: %s\n", e.what());
     return 1;
   }
-  std::fprintf(stderr, "usage: settle_bench run N STEPS THREADS | settle_bench mesh N STEPS THREADS TRIANGLES | settle_bench lammps-data N FILE\n");
+  std::fprintf(stderr, "usage: settle_bench run N STEPS THREADS [linear|hertz|hertz-rolling] | settle_bench mesh N STEPS THREADS TRIANGLES | settle_bench lammps-data N FILE\n");
   return 2;
 }

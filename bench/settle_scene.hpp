@@ -13,11 +13,10 @@
 #include <string>
 
 #include "contact/damping.hpp"
+#include "hertz_models.hpp"
 #include "sim/simulation.hpp"
 
 namespace dem::bench {
-
-inline double restitution_of(double gamma) { return std::exp(-std::numbers::pi * gamma / std::sqrt(1 - gamma * gamma)); }
 
 // Materials matching LAMMPS's gran/hooke/history with gamma_n x m_eff damping and gamma_t = gamma_n / 2:
 // - particle-particle: eta = 0.5 (m_eff = m/2);
@@ -51,6 +50,19 @@ inline MaterialTable settle_materials(double eta = 0.5) {
   return MaterialTable({bead, wall}, {}, {bw});
 }
 
+// Hertz variants (hertz_models.hpp): glass-like beads made soft, E = 5 MPa, nu = 0.3, restitution
+// 0.5, friction 0.5, rolling friction 0.1; walls of the same material (R* = a, m* = m, as the
+// peers). At the impact speeds here (<= 1 m/s) the Hertz contact lasts t_c = 2.87 (m*^2 / (R* E*^2
+// v))^(1/5) >= 2.7e-4 s for a pair: dt = 5e-6 s is t_c/54.
+constexpr HertzBead kSettleHertz{2500, 5e6, 0.3, 0.5, 0.5, 0.1};
+constexpr double kSettleHertzDt = 5e-6;
+
+inline MaterialTable settle_hertz_materials(ContactModel model) {
+  Material bead = hertz_material("bead", kSettleHertz, model), wall = bead;
+  wall.name = "wall";
+  return MaterialTable({bead, wall}, {});
+}
+
 struct LatticeSize {
   int nx, ny, nz;
   long count() const { return static_cast<long>(nx) * ny * nz; }
@@ -71,9 +83,9 @@ constexpr double kSpacing = 0.0025, kRadius = 0.001, kDensity = 2500;
 
 inline Vec3 settle_box(const LatticeSize& s) { return Vec3(s.nx * kSpacing, s.ny * kSpacing, (s.nz + 2) * kSpacing); }
 
-inline Simulation settle_scene(const LatticeSize& size, double eta = 0.5, bool walls = true) {
+inline Simulation settle_scene(const LatticeSize& size, double eta = 0.5, bool walls = true, ContactModel model = ContactModel::Linear) {
   Simulation sim;
-  sim.materials = settle_materials(eta);
+  sim.materials = model == ContactModel::Linear ? settle_materials(eta) : settle_hertz_materials(model);
   const Vec3 hi = settle_box(size);
   if (walls)
     for (int axis = 0; axis < 3; ++axis)
@@ -90,7 +102,7 @@ inline Simulation settle_scene(const LatticeSize& size, double eta = 0.5, bool w
       }
   sim.params.gravity = Vec3(0, 0, -9.81);
   sim.params.skin = 0.0002;
-  sim.dt = 1e-5;
+  sim.dt = model == ContactModel::Linear ? 1e-5 : kSettleHertzDt;
   return sim;
 }
 
