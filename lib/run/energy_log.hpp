@@ -27,8 +27,10 @@ class EnergyLog {
   EnergyLog(const std::string& path, std::int64_t every, std::int64_t resume_step);
 
   bool active() const { return csv_.active(); }
+  // Whether the step that ends with `steps_done` steps of the stage done writes a row.
+  bool due(std::int64_t steps_done, bool last) const { return csv_.active() && (steps_done % every_ == 0 || last); }
   void record(const Simulation& sim, std::int64_t steps_done, bool last) {
-    if (csv_.active() && (steps_done % every_ == 0 || last)) write(sim);
+    if (due(steps_done, last)) write(sim);
   }
   void finish() { csv_.finish(); }
   void discard() { csv_.discard(); }

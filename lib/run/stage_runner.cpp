@@ -343,6 +343,7 @@ void run_stage(const StageOptions& o) {
         if (insert_due(sim, inserts, sim.step - run.stage_start_step, sim.time - run.stage_start_time)) sim.account_inserted(before);
       }
       particle_steps += static_cast<double>(sim.particles.size());
+      sim.ledger.measure_now = energy.due(sim.step + 1 - run.stage_start_step, sim.step + 1 == end);
       checks.guard([&] { sim.advance(); });
       // Servo speeds for the next step from this step's forces: the periodic checkpoint holds them as
       // the walls' motion, so a resumed run continues exactly.

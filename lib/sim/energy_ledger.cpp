@@ -72,10 +72,10 @@ struct ContactTerms {
 // k_r (w_i - w_j) Δt in the next step, so the change of that figure is exactly -M · w̄ Δt while the
 // spring holds.
 void account_rolling(const PairParams& q, const Vec3& couple, const Vec3& w_mean, const Vec3& w_now, double u, double r_eff, double dt,
-                     ContactTerms& t) {
+                     bool measure, ContactTerms& t) {
   if (q.rolling == RollingLaw::None) return;
   t.rolling_work.add(couple.dot(w_mean) * dt);
-  if (q.rolling != RollingLaw::ElasticPlastic) return;  // cdt holds nothing
+  if (!measure || q.rolling != RollingLaw::ElasticPlastic) return;  // cdt holds nothing
   const double k_t = with_tangential_law(q, [&](auto law) {
     LaneKinematics<double> c{};
     c.overlap = u;
@@ -92,10 +92,10 @@ struct FibreTerms {
   FixedSum elastic, released;
 };
 void account_fibres(const FibreSet& fibres, const std::vector<std::uint8_t>& broken_before, const Vec3* x0, const Vec3* v0, const Vec3* w0,
-                    const Particles& p, double dt, FibreTerms& t) {
+                    const Particles& p, double dt, bool measure, FibreTerms& t) {
   for (std::size_t s = 0; s < fibres.segments(); ++s) {
     const bool broke = fibres.broken[s] && s < broken_before.size() && !broken_before[s];
-    if (fibres.broken[s] && !broke) continue;
+    if ((fibres.broken[s] || !measure) && !broke) continue;
     const int a = fibres.tie_of[s], b = a + 1;
     const int ia = fibres.tie_slot[a], ib = fibres.tie_slot[b];
     if (ia < 0 || ib < 0) continue;  // a particle removed: at a stage start, before the reference
@@ -116,33 +116,35 @@ void account_fibres(const FibreSet& fibres, const std::vector<std::uint8_t>& bro
 
 // One contact (force `f` on i and n x f_t `tpr`; normal `n` from i towards j or the wall; overlap
 // `u` at x^n): its dashpot's and tangential forces' work with the mean velocities, its elastic
-// energy at the half step (eq. P31), and, where its bond broke this step, the bond's energy.
-// `dv_mean` = v̄_i - v̄_j at the contact point without the spin, `arm_w` = a_i w̄_i + a_j w̄_j,
-// `dv_now`, `dv_before` the same difference at n+1/2 and n-1/2 (translation only).
-void account_contact(const PairParams& q, const Vec3& f, const Vec3& tpr, const Vec3& spring, const Vec3& n, double u, double r_eff,
-                     bool bonded, bool broke, const Vec3& dv_mean, const Vec3& arm_w, const Vec3& dv_now, const Vec3& dv_before,
-                     double dt, ContactTerms& t) {
+// energy at the half step (eq. P31) where `measure`, and, where its bond broke this step, the bond's
+// energy. `dv_mean` = v̄_i - v̄_j at the contact point without the spin, `arm_w` = a_i w̄_i + a_j w̄_j,
+// `dv_now`, `dv_before` the same difference at n+1/2 and n-1/2 (translation only). `Normal` is the
+// scene's normal law when all pairs share one (else MixedNormal, the pair's law per contact), so
+// that the pass, which runs every step, inlines it as the force loop does.
+template <class Normal>
+[[gnu::always_inline]] inline void account_contact(const PairParams& q, const Vec3& f, const Vec3& tpr, const Vec3& spring, const Vec3& n,
+                                                   double u, double r_eff, bool bonded, bool broke, const Vec3& dv_mean, const Vec3& arm_w,
+                                                   const Vec3& dv_now, const Vec3& dv_before, double dt, bool measure, ContactTerms& t) {
   const double rate = n.dot(dv_mean);  // du/dt over the step
   const double f_normal = f.dot(n);    // on i along n: < 0 repulsive
-  // The normal law's elastic force (repulsive > 0) and energy at u^n, and where the bond broke this
-  // step, its energy at the half step before, when it still held (eq. P36): one dispatch.
-  double f_el, e, e_broken = 0;
-  with_normal_law(q.law, [&](auto law) {
-    using Law = decltype(law);
-    bool b = bonded;
-    f_el = Law::elastic(q, u, r_eff, b);
-    e = Law::elastic_energy(q, u, r_eff, bonded);
-    if (broke) e_broken = Law::elastic_energy(q, u - 0.5 * n.dot(dv_before) * dt, r_eff, true);
-  });
+  bool b = bonded;
+  const double f_el = Normal::elastic(q, u, r_eff, b);  // the elastic force at u^n (repulsive > 0)
   // eq. P33: what the normal force did beyond the elastic one: the dashpot (and any clipping of it).
   const double f_damp = -f_normal - f_el;
   t.damping.add(f_damp * rate * dt);
   // eq. P34: the rest of the contact's power, f · (v̄_i - v̄_j) + (n x f_t) · (a_i w̄_i + a_j w̄_j).
   t.tangential_work.add(((f - f_normal * n).dot(dv_mean) + tpr.dot(arm_w)) * dt);
-  // eq. P31: at the half step n+1/2, E(u^n) + ½ f_el(u^n) Δu, Δu the overlap's change to x^{n+1}.
-  t.elastic.add(e + 0.5 * f_el * n.dot(dv_now) * dt);
-  t.springs.add(with_tangential_law(q, [&](auto law) { return decltype(law)::stored_energy(q, spring, u, r_eff); }));
-  if (broke) t.released.add(e_broken);
+  if (!broke && !measure) [[likely]]
+    return;
+  // What is held (and, where the bond broke this step, its energy at the half step before, when it
+  // still held, eq. P36): the pair's law, per contact.
+  with_normal_law(q.law, [&](auto law) {
+    using Law = decltype(law);
+    if (broke) t.released.add(Law::elastic_energy(q, u - 0.5 * n.dot(dv_before) * dt, r_eff, true));
+    // eq. P31: at the half step n+1/2, E(u^n) + ½ f_el(u^n) Δu, Δu the overlap's change to x^{n+1}.
+    if (measure) t.elastic.add(Law::elastic_energy(q, u, r_eff, bonded) + 0.5 * f_el * n.dot(dv_now) * dt);
+  });
+  if (measure) t.springs.add(with_tangential_law(q, [&](auto law) { return decltype(law)::stored_energy(q, spring, u, r_eff); }));
 }
 
 // One thread's share of a step's sums; summed over the threads in FixedSum's integers, so the
@@ -169,25 +171,33 @@ void Simulation::account_energy(bool any_fixed) {
   auto v_mean = [&](std::size_t k) { return Vec3(0.5 * (v0[k] + p.v[k])); };
   auto w_mean = [&](std::size_t k) { return Vec3(0.5 * (w0[k] + p.w[k])); };
   const bool has_fluid = params.fluid.on();
+  // What the particles and contacts hold is measured only where asked (and at the reference); the
+  // work of the step is added every step.
+  const bool measure = ledger.measure_now || !ledger.have_reference;
+  const bool global_damping = params.alpha_r != 0 || params.alpha_theta != 0;
+  // Whether a particle's own terms do work this step: otherwise only a measuring step visits them.
+  const bool particles_work = has_fluid || global_damping || any_fixed;
   auto account_particle = [&](std::size_t k, StepSums& s) {
     const double I = p.inertia(k);
-    s.kin_t.add(0.5 * p.mass[k] * p.v[k].squaredNorm());
-    s.kin_r.add(0.5 * I * p.w[k].squaredNorm());
-    // eq. P30: at the mean of x^n and x^{n+1} = x^{n+1} - v^{n+1/2} Δt/2.
-    s.potential.add(-p.mass[k] * params.gravity.dot(unwrapped_position(k) - 0.5 * dt * p.v[k]));
+    if (measure) {
+      s.kin_t.add(0.5 * p.mass[k] * p.v[k].squaredNorm());
+      s.kin_r.add(0.5 * I * p.w[k].squaredNorm());
+      // eq. P30: at the mean of x^n and x^{n+1} = x^{n+1} - v^{n+1/2} Δt/2.
+      s.potential.add(-p.mass[k] * params.gravity.dot(unwrapped_position(k) - 0.5 * dt * p.v[k]));
+    }
     const Vec3 v = v_mean(k), w = w_mean(k);
     // eq. P40: the fluid's force as the force loop took it (x^n, v^{n-1/2}), times the mean velocity.
     if (has_fluid) s.fluid.add(params.fluid.force(p.radius[k], p.void_fraction[k], x0[k], v0[k], params.gravity).dot(v) * dt);
     const std::uint8_t fixed = any_fixed ? p.fixed[k] : 0;
     if (fixed == kPrescribed) {
       s.prescribed.add(-(block_force_[k].v.dot(v) + block_torque_[k].v.dot(w)) * dt);  // eq. P37
-    } else if (!fixed) {
+    } else if (!fixed && global_damping) {
       // eq. P35: the integrator's m (v+ - v-) = F Δt - α m v̄ Δt takes α m |v̄|² Δt.
       s.global.add((params.alpha_r * p.mass[k] * v.squaredNorm() + params.alpha_theta * I * w.squaredNorm()) * dt);
     }
   };
   const bool breaks = !ledger_pair_bonded_.empty() || !ledger_wall_bonded_.empty();
-  auto account_pair = [&](std::size_t k, ContactTerms& t) {
+  auto account_pair = [&](auto normal, std::size_t k, ContactTerms& t) {
     const bool broke = breaks && k < ledger_pair_bonded_.size() && ledger_pair_bonded_[k] && !pairs_.bonded[k];
     if (!pairs_.active[k] && !broke) return;
     const int i = pairs_.slot_i[k], j = pairs_.slot_j[k];
@@ -196,12 +206,13 @@ void Simulation::account_energy(bool any_fixed) {
     const Vec3 n = d / dist;
     const double r_eff = p.radius[i] * p.radius[j] / (p.radius[i] + p.radius[j]);
     const PairParams& q = materials.pair(p.material[i], p.material[j]);
-    account_contact(q, pairs_.sum[k].force, pairs_.sum[k].torque_per_radius, pairs_.spring[k], n, p.radius[i] + p.radius[j] - dist, r_eff,
-                    pairs_.bonded[k], broke, v_mean(i) - v_mean(j), p.radius[i] * w_mean(i) + p.radius[j] * w_mean(j), p.v[i] - p.v[j],
-                    v0[i] - v0[j], dt, t);
-    account_rolling(q, pairs_.rolling[k], w_mean(i) - w_mean(j), p.w[i] - p.w[j], p.radius[i] + p.radius[j] - dist, r_eff, dt, t);
+    account_contact<decltype(normal)>(q, pairs_.sum[k].force, pairs_.sum[k].torque_per_radius, pairs_.spring[k], n,
+                                      p.radius[i] + p.radius[j] - dist, r_eff, pairs_.bonded[k], broke, v_mean(i) - v_mean(j),
+                                      p.radius[i] * w_mean(i) + p.radius[j] * w_mean(j), p.v[i] - p.v[j], v0[i] - v0[j], dt, measure, t);
+    if (q.rolling != RollingLaw::None)
+      account_rolling(q, pairs_.rolling[k], w_mean(i) - w_mean(j), p.w[i] - p.w[j], p.radius[i] + p.radius[j] - dist, r_eff, dt, measure, t);
   };
-  auto account_wall = [&](std::size_t k, ContactTerms& t) {
+  auto account_wall = [&](auto normal, std::size_t k, ContactTerms& t) {
     const bool broke = breaks && k < ledger_wall_bonded_.size() && ledger_wall_bonded_[k] && !walls_.bonded[k];
     if (!walls_.active[k] && !broke) return;
     const int i = walls_.slot_i[k], w = walls_.slot_j[k];
@@ -214,40 +225,49 @@ void Simulation::account_energy(bool any_fixed) {
     const Vec3& f = walls_.sum[k].force;
     t.walls.add(f.dot(v_wall) * dt);  // eq. P37
     const PairParams& q = materials.pair(p.material[i], walls[w].material);
-    account_contact(q, f, walls_.sum[k].torque_per_radius, walls_.spring[k], n, p.radius[i] - dist, p.radius[i], walls_.bonded[k], broke,
-                    v_mean(i) - v_wall, p.radius[i] * w_mean(i), p.v[i] - v_wall, v0[i] - v_wall, dt, t);
+    account_contact<decltype(normal)>(q, f, walls_.sum[k].torque_per_radius, walls_.spring[k], n, p.radius[i] - dist, p.radius[i],
+                                      walls_.bonded[k], broke, v_mean(i) - v_wall, p.radius[i] * w_mean(i), p.v[i] - v_wall, v0[i] - v_wall,
+                                      dt, measure, t);
     if (q.rolling != RollingLaw::None) {
       // The couple -M on the wall is held by its drive, which puts in M · spin (eq. P41).
       const Vec3& couple = walls_.rolling[k];
       t.walls.add(couple.dot(g.spin) * dt);
-      account_rolling(q, couple, w_mean(i) - g.spin, p.w[i] - g.spin, p.radius[i] - dist, p.radius[i], dt, t);
+      account_rolling(q, couple, w_mean(i) - g.spin, p.w[i] - g.spin, p.radius[i] - dist, p.radius[i], dt, measure, t);
     }
   };
   // Each thread its own sums over fixed ranges of the particles and contacts (a term out of range
   // is kept, not thrown, and reported by value() after the region).
   StepSums sums;
   const long pair_count = static_cast<long>(pairs_.size()), wall_count = static_cast<long>(walls_.size());
+  const long particle_count = measure || particles_work ? count : 0;
+  auto account_all = [&](auto normal) {
 #pragma omp parallel
-  {
-    StepSums mine;
+    {
+      StepSums mine;
 #pragma omp for schedule(static) nowait
-    for (long k = 0; k < count; ++k) account_particle(k, mine);
+      for (long k = 0; k < particle_count; ++k) account_particle(k, mine);
 #pragma omp for schedule(static) nowait
-    for (long k = 0; k < pair_count; ++k) account_pair(k, mine.c);
+      for (long k = 0; k < pair_count; ++k) account_pair(normal, k, mine.c);
 #pragma omp for schedule(static) nowait
-    for (long k = 0; k < wall_count; ++k) account_wall(k, mine.c);
+      for (long k = 0; k < wall_count; ++k) account_wall(normal, k, mine.c);
 #pragma omp critical(dem_energy_ledger)
-    sums.add(mine);
-  }
+      sums.add(mine);
+    }
+  };
+  // The normal law the force loop ran (force_loop.hpp): one for all pairs, or each pair's own.
+  const ForceVariant variant = choose_force_variant(materials, has_bonds());
+  if (variant) with_normal_law(variant->normal, account_all);
+  else account_all(MixedNormal{});
   const ContactTerms& t = sums.c;
   ledger_pair_bonded_.clear();
   ledger_wall_bonded_.clear();
   FibreTerms fibre_terms;
-  if (!fibres.empty()) account_fibres(fibres, ledger_fibre_broken_, x0, v0, w0, p, dt, fibre_terms);
+  if (!fibres.empty()) account_fibres(fibres, ledger_fibre_broken_, x0, v0, w0, p, dt, measure, fibre_terms);
 
   EnergyLedger& l = ledger;
-  l.now = EnergyState{sums.kin_t.value(), sums.kin_r.value(),     sums.potential.value(),      t.elastic.value(),
-                      t.springs.value(), t.rolling_springs.value(), fibre_terms.elastic.value()};
+  if (measure)
+    l.now = EnergyState{sums.kin_t.value(), sums.kin_r.value(),     sums.potential.value(),      t.elastic.value(),
+                        t.springs.value(), t.rolling_springs.value(), fibre_terms.elastic.value()};
   if (!l.have_reference) {  // the first step accounted is the reference: its own work is not counted
     l.reference = l.now;
     l.totals = EnergyTotals{};

@@ -1,8 +1,9 @@
 #pragma once
 // The energy balance of a run (docs/physics.md eq. P29-P45), kept only when asked (run-stage's
 // energy log): each step, after the motion, a pass over the particles and contacts adds what the
-// step dissipated, released and put in, and measures what the particles and contacts hold. The
-// force loop is not touched: a run that does not ask pays one branch per step.
+// step dissipated, released and put in, and, at the steps whose figures are read (measure_now),
+// measures what the particles and contacts hold. The force loop is not touched: a run that does
+// not ask pays one branch per step.
 //
 // The scheme follows the integrator (leapfrog): the force at step n acts on the velocity between
 // the half steps n-1/2 and n+1/2, so the kinetic energy changes by exactly F · (v^{n-1/2} +
@@ -77,10 +78,14 @@ struct EnergyState {
 
 struct EnergyLedger {
   bool on = false;         // accumulate (Simulation::advance)
+  // Whether the next step measures what is held (`now`): the work is added every step, but the
+  // state is needed only where a figure is read (the energy log's rows), and measuring it is most
+  // of the pass. The first step accounted always measures (the reference).
+  bool measure_now = true;
   bool have_reference = false;
   EnergyState reference;   // at the end of the first step accounted
   EnergyTotals totals;
-  EnergyState now;         // at the last step accounted
+  EnergyState now;         // at the last step that measured it
 
   // Friction and the tangential dashpot together, eq. P34: what the tangential forces took from the
   // particles less what the springs now hold more than at the reference.
