@@ -146,14 +146,10 @@ struct MindlinSpring : TangentialSpring {
     p.mindlin_damping = 2 * std::sqrt(5.0 / 6.0) * p.gamma_t * std::sqrt(2.0 / 7.0 * p.mindlin_modulus);  // eq. H10
     p.kt = 0;  // no linear spring
   }
-  // sqrt(R* u): the contact radius a, zero apart.
-  template <class L>
-  [[gnu::always_inline]] static L contact_radius(const LaneKinematics<L>& c) {
-    return lanes::root(c.r_eff * lanes::only_where(lanes::less(L(0.0), c.overlap), c.overlap));
-  }
+  // c_t with the contact radius a = sqrt(R* u) (kinematics.hpp: the hertz law's and its dashpot's).
   template <class P, class L>
   [[gnu::always_inline]] static L dashpot(const P& p, const LaneKinematics<L>& c) {
-    return p.mindlin_damping * lanes::root(c.m_eff * contact_radius(c));
+    return p.mindlin_damping * root_mass_radius(c, contact_radius(c));
   }
   // k_t = 8 G* a (eq. H8) [N/m].
   template <class P, class L>
@@ -174,7 +170,7 @@ struct MindlinSpring : TangentialSpring {
   }
   // |s|^2 / (2 k_t(u)) [J]: the energy of the spring at the current stiffness.
   static double stored_energy(const PairParams& p, const Vec3& spring, double u, double r_eff) {
-    const double k = p.mindlin_modulus * std::sqrt(r_eff * std::max(u, 0.0));
+    const double k = p.mindlin_modulus * contact_radius(u, r_eff);
     return k > 0 ? 0.5 * spring.squaredNorm() / k : 0.0;
   }
   // k_t at the largest radius and overlap a run reaches (as the hertz normal law's bound).
