@@ -24,7 +24,7 @@ struct ContactForce {
 };
 
 // The law, written once over a lane type L (simd/lanes.hpp): one contact (L = double, from the
-// plain loops, contact_law.hpp) or four (L = Lanes4, forces/cundall_four_wide.cpp). `P` holds the pair
+// plain loops, contact_law.hpp) or four (L = Lanes4, forces/pair_law_four_wide.hpp). `P` holds the pair
 // constants by PairParams' names, as doubles or as lanes; `M` is L's mask type.
 template <class L>
 struct LaneKinematics {

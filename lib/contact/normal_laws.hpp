@@ -13,7 +13,7 @@
 // constants from them (`derive`).
 //
 // A law written over a lane type (simd/lanes.hpp) also runs four contacts at a time (four_wide:
-// CundallNormal); the others one at a time (L = double, P = PairParams).
+// CundallNormal, HertzNormal); the others one at a time (L = double, P = PairParams).
 //
 // How to add a law: a struct here with the members below, its entry in model_table.hpp (one
 // enum value in contact/pair_params.hpp, one case), its tests, and its keyword in docs/scene.md.
@@ -167,7 +167,7 @@ struct MendesNormal {
 struct HertzNormal {
   using Damping = HertzDamping;  // its dashpot grows with the contact (eq. H6)
   static constexpr std::string_view keyword = "hertz";
-  static constexpr bool four_wide = false;
+  static constexpr bool four_wide = true;
   using WithoutBonds = HertzNormal;
   template <class P, class L, class M>
   [[gnu::always_inline]] static L elastic(const P& p, const L& u, const L& r_eff, M& bonded) {

@@ -5,7 +5,8 @@
 // whose stiffness is a constant (CoulombSpring) or grows with the contact radius (MindlinSpring).
 // Its history is the spring force on i, a global vector (SPEC §5 Decision), kept per contact.
 //
-// A tangential sub-model has: `keyword`; `keys` (its scene keys, contact/properties.hpp);
+// A tangential sub-model has: `keyword`; `keys` (its scene keys, contact/properties.hpp); `four_wide`
+// (true: written over lanes);
 // `derive(p, properties)`; `in_tangent_plane(spring, n)` (its history turned into the current
 // tangent plane); `dashpot(p, c)` (its coefficient c_t for contact kinematics c);
 // `force(p, c, k_t, vt, fn, bonded, dashpot, dt, spring, ft)` (over a lane type; k_t its
@@ -29,6 +30,7 @@ namespace dem {
 // What every tangential spring shares: its history turned with the contact, and the step of eq.
 // 2.13-2.16 and 2.26 for a given stiffness.
 struct TangentialSpring {
+  static constexpr bool four_wide = true;  // written over lanes (a mixed choice per contact is not)
   // The spring turned into the tangent plane of normal n, keeping its magnitude. Apart so that a
   // force loop can turn the springs of many contacts before it evaluates them: the division and
   // square root here, and the ones that find n, then overlap across contacts instead of each
