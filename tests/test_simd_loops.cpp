@@ -1,8 +1,8 @@
 // The force loop's four-wide versions (simd/simd.hpp) are speed only. Pass 1 (forces/find_contacts.hpp,
 // which candidates are contacts) must decide exactly as the plain loop and as the definition
 // (|x_j - x_i| < a_i + a_j through the nearest image, or bonded; the neighbour list never pairs
-// two fixed particles), with the same separations to the bit; pass 2 (forces/cundall_four_wide.hpp, the
-// Cundall law) must end a run with the plain loops' bits, with everything the law has: two
+// two fixed particles), with the same separations to the bit; pass 2 (forces/pair_law_four_wide.hpp,
+// the Cundall and Hertz-Mindlin laws) must end a run with the plain loops' bits, with everything the law has: two
 // materials, fixed particles, periodic boundaries, sticking and sliding springs, bonds with
 // cohesion, clipped viscous attraction.
 #include <gtest/gtest.h>
@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "contact/contact_law.hpp"
 #include "core/error.hpp"
 #include "generation/fill.hpp"
 #include "forces/find_contacts.hpp"
@@ -139,13 +140,13 @@ TEST(SimdLoops, PassOneDecidesAsTheDefinitionWithThePlainLoopsBits) {
   EXPECT_GT(across_boundary, 20) << "the case must test contacts across the periodic boundaries";
 }
 
-// Spheres of two materials (one clips viscous attraction) with random speeds, grown by 15 % where
-// they were placed apart, so that they press on each other (a dense, jammed packing: 65 % of the
+// Spheres of two materials (one clips viscous attraction) with random speeds, grown by 15 % (or
+// `growth`) where they were placed apart, so that they press on each other (a dense, jammed packing: 65 % of the
 // volume), in a box periodic along x and y, a floor of them fixed; after 400 steps every contact present is
 // bonded (cohesion: the Cundall law's bonded failure surface), then 1000 steps more, in which the
 // bonds break as their particles separate (SPEC §6 Decision (separation): most within 50 steps) and
 // the contacts present are bonded again every 40 steps.
-Simulation law_scene() {
+Simulation law_scene(double growth = 1.15) {
   Simulation sim;
   Material a, b;
   a.name = "a", b.name = "b";
@@ -174,8 +175,8 @@ Simulation law_scene() {
   sim.set_periodic(box);
   std::uniform_real_distribution<double> u(-0.3, 0.3);
   for (std::size_t k = 0; k < sim.particles.size(); ++k) {
-    sim.particles.radius[k] *= 1.15;
-    sim.particles.mass[k] *= 1.15 * 1.15 * 1.15;
+    sim.particles.radius[k] *= growth;
+    sim.particles.mass[k] *= growth * growth * growth;
     sim.particles.v[k] = draw_vec(u, rng);
     sim.particles.fixed[k] = sim.particles.x[k].z() < 0.25 * L;
     if (sim.particles.fixed[k]) sim.particles.v[k] = Vec3::Zero();
@@ -220,6 +221,71 @@ TEST(SimdLoops, LawEndsARunWithThePlainLoopsBits) {
       EXPECT_TRUE(same_bits(plain.pair_contacts().spring, wide->pair_contacts().spring)) << what;
       EXPECT_TRUE(same_bits(plain.pair_contacts().bonded, wide->pair_contacts().bonded)) << what;
     }
+  }
+}
+
+// Hertz-Mindlin, and the Cundall law, with each rolling law (ContactModel::four_wide: the same
+// templates over four lanes) end a run with the plain loops' bits: law_scene's jammed, periodic
+// packing with its fixed floor, grown by 22 % (about 1.4 contacts per sphere, so that the chunks
+// hold enough contacts for the four-wide law), its materials made Hertz-Mindlin (two moduli and
+// restitutions, one clipping viscous attraction) or kept Cundall, one friction angle of 10 degrees
+// (so that many contacts slide), 300 steps, every contact bonded (the four-wide loop's bonded
+// variant), 300 more. Positions, velocities, spins, springs, rolling
+// histories, dashpot marks and bond flags are compared bit for bit: any lane that rounds otherwise
+// than the plain loop shows. The runs must exercise sliding contacts (counted in the plain run:
+// the spring held on the Coulomb limit |s| = mu f_n, to 1e-12 relative: radial return's rounding).
+TEST(SimdLoops, HertzMindlinAndRollingLawsEndARunWithThePlainLoopsBits) {
+  if (!simd_loops_available()) GTEST_SKIP() << "no AVX2 on this processor: only the plain loops run";
+  static_assert(ContactModel<HertzNormal, MindlinSpring, NoRolling>::four_wide &&
+                ContactModel<HertzNormal, MindlinSpring, ConstantTorque>::four_wide &&
+                ContactModel<HertzNormal, MindlinSpring, ElasticPlasticRolling>::four_wide);
+  constexpr double kFriction = 10;  // degrees
+  for (const bool hertz : {true, false})
+  for (const RollingLaw rolling : {RollingLaw::None, RollingLaw::ConstantTorque, RollingLaw::ElasticPlastic}) {
+    if (!hertz && rolling == RollingLaw::None) continue;  // LawEndsARunWithThePlainLoopsBits
+    auto scene = [&]() {
+      Simulation sim = law_scene(1.22);
+      std::vector<Material> m = sim.materials.materials();
+      for (Material& x : m) {
+        if (hertz) x.law = NormalLaw::Hertz, x.tangential = TangentialLaw::Mindlin;
+        x.rolling = rolling;
+        x.poisson_ratio = 0.3, x.rolling_friction = 0.1, x.friction_angle = kFriction;
+      }
+      m[0].young_modulus = 5e7, m[1].young_modulus = 8e7;
+      sim.materials = MaterialTable(m, {});
+      sim.dt = 0.1 * sim.critical_time_step();
+      return sim;
+    };
+    Simulation plain = scene(), wide = scene();
+    for (Simulation* sim : {&plain, &wide}) {
+      set_simd_loops(sim == &wide);
+      for (int s = 0; s < 300; ++s) sim->advance();
+      EXPECT_GT(sim->bond_present_contacts(false), 50u);
+      for (int s = 0; s < 300; ++s) sim->advance();
+    }
+    set_simd_loops(true);
+    const ContactList& pc = plain.pair_contacts();
+    long contacts = 0, unbonded = 0, sliding = 0;
+    const double mu = std::tan(kFriction * std::acos(-1.0) / 180);
+    for (std::size_t k = 0; k < pc.size(); ++k) {
+      if (!pc.active[k]) continue;
+      ++contacts;
+      if (pc.bonded[k]) continue;
+      ++unbonded;
+      const double fn = -pc.sum[k].force.dot(pc.normal[k]);
+      sliding += fn > 0 && std::abs(pc.spring[k].norm() - mu * fn) <= 1e-12 * mu * fn;
+    }
+    const std::string what = std::string(hertz ? "hertz + mindlin + " : "cundall + ") + std::string(rolling_law_name(rolling));
+    std::printf("  %s: %ld contacts at the end, %ld unbonded, %ld of them sliding\n", what.c_str(), contacts, unbonded, sliding);
+    ASSERT_GT(contacts, 80) << what;
+    EXPECT_GT(sliding, 10) << what << ": the run must exercise sliding";
+    EXPECT_TRUE(same_bits(plain.particles.x, wide.particles.x)) << what;
+    EXPECT_TRUE(same_bits(plain.particles.v, wide.particles.v)) << what;
+    EXPECT_TRUE(same_bits(plain.particles.w, wide.particles.w)) << what;
+    EXPECT_TRUE(same_bits(pc.spring, wide.pair_contacts().spring)) << what;
+    EXPECT_TRUE(same_bits(pc.rolling, wide.pair_contacts().rolling)) << what;
+    EXPECT_TRUE(same_bits(pc.dashpot, wide.pair_contacts().dashpot)) << what;
+    EXPECT_TRUE(same_bits(pc.bonded, wide.pair_contacts().bonded)) << what;
   }
 }
 

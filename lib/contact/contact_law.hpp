@@ -28,6 +28,9 @@ struct ContactModel {
   using RollingModel = Rolling;
   using Damping = typename Normal::Damping;
   static constexpr bool has_rolling = !std::is_same_v<Rolling, NoRolling>;
+  // Every sub-model written over lanes: the force loop also runs it four contacts at a time
+  // (forces/pair_law_four_wide.hpp).
+  static constexpr bool four_wide = Normal::four_wide && Tangential::four_wide && Rolling::four_wide;
 
   // The law for springs already in the tangent plane (Tangential::in_tangent_plane): `spring` and
   // `rolling` (the rolling law's history, if it keeps one) are updated in place, `bonded` (Phi)

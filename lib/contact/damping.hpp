@@ -64,13 +64,13 @@ struct HertzDamping {
   // c_n at overlap x (0 where x <= 0).
   template <class P, class L>
   [[gnu::always_inline]] static L coefficient_at(const P& p, const LaneKinematics<L>& c, const L& x) {
-    const L u = lanes::only_where(lanes::less(L(0.0), x), x);
-    return p.hertz_damping * lanes::root(c.m_eff * lanes::root(c.r_eff * u));
+    return p.hertz_damping * root_mass_radius(c, contact_radius(x, c.r_eff));
   }
-  // Its integral over the overlap from 0 to x: c_n grows as u^(1/4), so 4/5 x c_n(x) (eq. D6).
-  template <class P, class L>
-  [[gnu::always_inline]] static L primitive(const P& p, const LaneKinematics<L>& c, const L& x) {
-    return L(0.8) * lanes::only_where(lanes::less(L(0.0), x), x) * coefficient_at(p, c, x);
+  // Its integral over the overlap from 0 to x, given c_x = c_n(x): c_n grows as u^(1/4), so
+  // 4/5 x c_n(x) (eq. D6).
+  template <class L>
+  [[gnu::always_inline]] static L primitive(const L& x, const L& c_x) {
+    return L(0.8) * lanes::only_where(lanes::less(L(0.0), x), x) * c_x;
   }
   static constexpr auto& keys = ViscousDamping::keys;
   static void derive(PairParams& p, const PairProperties& pair) {
@@ -136,11 +136,12 @@ template <class D, class P, class L, class M>
     mark = ahead;
     return c_n * (ahead - before) * L(1.0 / dt);
   } else {
-    const L g_before = D::primitive(p, k, before);
+    const L g_before = D::primitive(before, D::coefficient_at(p, k, before));
     const L r_part = u - h * (free - g_before * inv_m);  // the overlap at the next step with M+ = 0
-    L x = u, ahead = u, impulse = zero;
+    L x = u, c_x = D::coefficient(p, k), ahead = u, impulse = zero;  // c_n at u: the contact's own roots (kinematics.hpp)
     for (int pass = 0; pass < 2; ++pass) {  // eq. D6: the integral linearised about x, first u, then the prediction
-      const L c_x = D::coefficient_at(p, k, x), g_x = D::primitive(p, k, x);
+      if (pass > 0) c_x = D::coefficient_at(p, k, x);
+      const L g_x = D::primitive(x, c_x);
       const L a2 = h * (c_x * inv_m);
       const L b = free + (g_x - g_before - c_x * x) * inv_m;
       const L r = u - h * b;

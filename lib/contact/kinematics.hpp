@@ -24,7 +24,7 @@ struct ContactForce {
 };
 
 // The law, written once over a lane type L (simd/lanes.hpp): one contact (L = double, from the
-// plain loops, contact_law.hpp) or four (L = Lanes4, forces/cundall_four_wide.cpp). `P` holds the pair
+// plain loops, contact_law.hpp) or four (L = Lanes4, forces/pair_law_four_wide.hpp). `P` holds the pair
 // constants by PairParams' names, as doubles or as lanes; `M` is L's mask type.
 template <class L>
 struct LaneKinematics {
@@ -35,6 +35,23 @@ struct LaneKinematics {
   L r_eff;
   lanes::Triple<L> w_rel{};  // as ContactKinematics
 };
+// The contact radius of elastic spheres, a = sqrt(R* u) (0 apart: u <= 0), docs/contact-laws.md
+// eq. H1, H6, H8: written once, so that the Hertz force, its dashpot and Mindlin's stiffness and
+// dashpot of one contact are the same expression, which the compiler computes once.
+template <class L>
+[[gnu::always_inline]] inline L contact_radius(const L& u, const L& r_eff) {
+  return lanes::root(r_eff * lanes::only_where(lanes::less(L(0.0), u), u));
+}
+template <class L>
+[[gnu::always_inline]] inline L contact_radius(const LaneKinematics<L>& c) {
+  return contact_radius(c.overlap, c.r_eff);
+}
+// sqrt(m* a): the root both dashpots of Hertz-Mindlin take (eq. H6, H10), one expression for both.
+template <class L>
+[[gnu::always_inline]] inline L root_mass_radius(const LaneKinematics<L>& c, const L& a) {
+  return lanes::root(c.m_eff * a);
+}
+
 template <class L>
 struct LaneForce {
   lanes::Triple<L> on_i, tangential, couple;  // as ContactForce

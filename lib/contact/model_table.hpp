@@ -141,6 +141,7 @@ struct MixedNormal {
 
 // A scene whose material pairs use different tangential laws: the law of each contact's pair.
 struct MixedTangential : TangentialSpring {
+  static constexpr bool four_wide = false;
   static double dashpot(const PairParams& p, const LaneKinematics<double>& c) {
     return with_tangential_law(p, [&](auto law) { return decltype(law)::dashpot(p, c); });
   }
@@ -155,6 +156,7 @@ struct MixedTangential : TangentialSpring {
 
 // A scene whose material pairs use different rolling laws: the law of each contact's pair.
 struct MixedRolling {
+  static constexpr bool four_wide = false;
   static constexpr bool has_history = true;  // some pair's may
   static lanes::Triple<double> couple(const PairParams& p, const LaneKinematics<double>& c, double f_el, double k_t, double dt,
                                       lanes::Triple<double>& history) {

@@ -13,7 +13,7 @@
 // constants from them (`derive`).
 //
 // A law written over a lane type (simd/lanes.hpp) also runs four contacts at a time (four_wide:
-// CundallNormal); the others one at a time (L = double, P = PairParams).
+// CundallNormal, HertzNormal); the others one at a time (L = double, P = PairParams).
 //
 // How to add a law: a struct here with the members below, its entry in model_table.hpp (one
 // enum value in contact/pair_params.hpp, one case), its tests, and its keyword in docs/scene.md.
@@ -23,6 +23,7 @@
 #include <string_view>
 
 #include "contact/damping.hpp"
+#include "contact/kinematics.hpp"
 #include "contact/pair_params.hpp"
 #include "contact/properties.hpp"
 #include "simd/lanes.hpp"
@@ -166,15 +167,16 @@ struct MendesNormal {
 struct HertzNormal {
   using Damping = HertzDamping;  // its dashpot grows with the contact (eq. H6)
   static constexpr std::string_view keyword = "hertz";
-  static constexpr bool four_wide = false;
+  static constexpr bool four_wide = true;
   using WithoutBonds = HertzNormal;
-  static double elastic(const PairParams& p, double u, double r_eff, bool& bonded) {
+  template <class P, class L, class M>
+  [[gnu::always_inline]] static L elastic(const P& p, const L& u, const L& r_eff, M& bonded) {
     break_when_apart(u, r_eff, bonded);
-    return u > 0 ? p.hertz_modulus * std::sqrt(r_eff * u) * u : 0.0;  // eq. H1, hertz_modulus = 4/3 E*
+    return lanes::only_where(lanes::less(L(0.0), u), p.hertz_modulus * contact_radius(u, r_eff) * u);  // eq. H1, hertz_modulus = 4/3 E*
   }
   // The work of eq. H1 from first touch: 2/5 f u = 8/15 E* sqrt(R*) u^(5/2) (eq. H4).
   static double stored_energy(const PairParams& p, double u, double r_eff, bool /*bonded*/) {
-    return u > 0 ? 0.4 * p.hertz_modulus * std::sqrt(r_eff * u) * u * u : 0.0;
+    return u > 0 ? 0.4 * p.hertz_modulus * contact_radius(u, r_eff) * u * u : 0.0;
   }
   static double elastic_energy(const PairParams& p, double u, double r_eff, bool bonded) { return stored_energy(p, u, r_eff, bonded); }
   // The slope df/du = 2 E* sqrt(R* u) grows with the overlap: bounded at the largest effective

@@ -6,7 +6,8 @@
 // A rolling sub-model has: `keyword`; `keys`; `derive(p, properties)`; `has_history` (whether it
 // keeps a couple per contact, ContactList::rolling); `couple(p, c, f_el, k_t, dt, history)` (over a
 // lane type: its couple on i for contact kinematics c, elastic normal force f_el and tangential
-// stiffness k_t; `history`, already in the tangent plane, updated in place);
+// stiffness k_t; `history`, already in the tangent plane, updated in place); `four_wide` (true:
+// written over lanes);
 // `stored_energy(p, history, k_t, r_eff)`; `stiffness(k_t)` (for eq. 2.48).
 #include <array>
 #include <cmath>
@@ -36,6 +37,7 @@ struct NoRolling {
   static constexpr std::string_view keyword = "none";
   static constexpr std::array<PropertyKey, 0> keys{};
   static constexpr bool has_history = false;
+  static constexpr bool four_wide = true;
   static void derive(PairParams&, const PairProperties&) {}
   template <class P, class L>
   [[gnu::always_inline]] static lanes::Triple<L> couple(const P&, const LaneKinematics<L>&, const L&, const L&, double,
@@ -54,6 +56,7 @@ struct ConstantTorque {
   static constexpr std::string_view keyword = "cdt";
   static constexpr std::array<PropertyKey, 1> keys{kRollingFrictionKey};
   static constexpr bool has_history = false;
+  static constexpr bool four_wide = true;
   static void derive(PairParams& p, const PairProperties& pair) { p.rolling_friction = pair.mixed.rolling_friction; }
   template <class P, class L>
   [[gnu::always_inline]] static lanes::Triple<L> couple(const P& p, const LaneKinematics<L>& c, const L& f_el, const L& /*k_t*/,
@@ -76,6 +79,7 @@ struct ElasticPlasticRolling {
   static constexpr std::string_view keyword = "epsd2";
   static constexpr std::array<PropertyKey, 1> keys{kRollingFrictionKey};
   static constexpr bool has_history = true;
+  static constexpr bool four_wide = true;
   static void derive(PairParams& p, const PairProperties& pair) { p.rolling_friction = pair.mixed.rolling_friction; }
   template <class P, class L>
   [[gnu::always_inline]] static lanes::Triple<L> couple(const P& p, const LaneKinematics<L>& c, const L& f_el, const L& k_t, double dt,

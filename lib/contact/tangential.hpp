@@ -5,7 +5,8 @@
 // whose stiffness is a constant (CoulombSpring) or grows with the contact radius (MindlinSpring).
 // Its history is the spring force on i, a global vector (SPEC §5 Decision), kept per contact.
 //
-// A tangential sub-model has: `keyword`; `keys` (its scene keys, contact/properties.hpp);
+// A tangential sub-model has: `keyword`; `keys` (its scene keys, contact/properties.hpp); `four_wide`
+// (true: written over lanes);
 // `derive(p, properties)`; `in_tangent_plane(spring, n)` (its history turned into the current
 // tangent plane); `dashpot(p, c)` (its coefficient c_t for contact kinematics c);
 // `force(p, c, k_t, vt, fn, bonded, dashpot, dt, spring, ft)` (over a lane type; k_t its
@@ -29,6 +30,7 @@ namespace dem {
 // What every tangential spring shares: its history turned with the contact, and the step of eq.
 // 2.13-2.16 and 2.26 for a given stiffness.
 struct TangentialSpring {
+  static constexpr bool four_wide = true;  // written over lanes (a mixed choice per contact is not)
   // The spring turned into the tangent plane of normal n, keeping its magnitude. Apart so that a
   // force loop can turn the springs of many contacts before it evaluates them: the division and
   // square root here, and the ones that find n, then overlap across contacts instead of each
@@ -146,14 +148,10 @@ struct MindlinSpring : TangentialSpring {
     p.mindlin_damping = 2 * std::sqrt(5.0 / 6.0) * p.gamma_t * std::sqrt(2.0 / 7.0 * p.mindlin_modulus);  // eq. H10
     p.kt = 0;  // no linear spring
   }
-  // sqrt(R* u): the contact radius a, zero apart.
-  template <class L>
-  [[gnu::always_inline]] static L contact_radius(const LaneKinematics<L>& c) {
-    return lanes::root(c.r_eff * lanes::only_where(lanes::less(L(0.0), c.overlap), c.overlap));
-  }
+  // c_t with the contact radius a = sqrt(R* u) (kinematics.hpp: the hertz law's and its dashpot's).
   template <class P, class L>
   [[gnu::always_inline]] static L dashpot(const P& p, const LaneKinematics<L>& c) {
-    return p.mindlin_damping * lanes::root(c.m_eff * contact_radius(c));
+    return p.mindlin_damping * root_mass_radius(c, contact_radius(c));
   }
   // k_t = 8 G* a (eq. H8) [N/m].
   template <class P, class L>
@@ -174,7 +172,7 @@ struct MindlinSpring : TangentialSpring {
   }
   // |s|^2 / (2 k_t(u)) [J]: the energy of the spring at the current stiffness.
   static double stored_energy(const PairParams& p, const Vec3& spring, double u, double r_eff) {
-    const double k = p.mindlin_modulus * std::sqrt(r_eff * std::max(u, 0.0));
+    const double k = p.mindlin_modulus * contact_radius(u, r_eff);
     return k > 0 ? 0.5 * spring.squaredNorm() / k : 0.0;
   }
   // k_t at the largest radius and overlap a run reaches (as the hertz normal law's bound).

@@ -1,6 +1,6 @@
 #pragma once
 // Pass 1 of the force loop: which pair candidates of a chunk are contacts (touching, or held by a
-// bond). The others get no force and lose their history. Pass 2 (cundall_four_wide.hpp) then runs the
+// bond). The others get no force and lose their history. Pass 2 (pair_law_four_wide.hpp) then runs the
 // law on the contacts found, without an unpredictable branch, on the separations found here.
 //
 // Two versions give the same bits: a plain loop, and one that tests four candidates at once with

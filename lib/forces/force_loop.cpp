@@ -13,7 +13,7 @@
 #include "contact/contact_law.hpp"
 #include "contact/model_table.hpp"
 #include "forces/find_contacts.hpp"
-#include "forces/cundall_four_wide.hpp"
+#include "forces/pair_law_four_wide.hpp"
 #include "simd/lanes_avx2.hpp"
 #include "simd/memory.hpp"
 #include "simd/simd.hpp"
@@ -56,9 +56,9 @@ double pair_chunk(const ChunkInput& chunk, long first, long last) {
   double dx[kChunk + kFoundPadding], dy[kChunk + kFoundPadding], dz[kChunk + kFoundPadding];
   const FoundInChunk found{contact, dx, dy, dz};
   const int m = find_contacts<Periodic>(chunk.candidates, box, first, last, found, chunk.simd);
-  // Pass 2 (cundall_four_wide.hpp): the law on them.
-  if constexpr (std::is_same_v<Model, ContactModel<CundallNormal>>)
-    if (chunk.simd && m >= kMinSimdLaw) return cundall_pair_law_simd<Fixed>(a, materials, dt, found, m, chunk.in.any_bonds);
+  // Pass 2 (pair_law_four_wide.hpp): the law on them, four at a time where the model allows.
+  if constexpr (Model::four_wide)
+    if (chunk.simd && m >= kMinSimdLaw) return pair_law_four_wide<Model, Fixed>(a, materials, dt, found, m, chunk.in.any_bonds);
   // Pass 2, in three loops over the chunk's contacts: their kinematics, their springs turned into
   // the tangent plane, the law. Each loop is short and its contacts independent, so the processor
   // overlaps the divisions and square roots of several contacts; in one long loop each contact

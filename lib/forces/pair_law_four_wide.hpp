@@ -1,22 +1,75 @@
-#include "forces/cundall_four_wide.hpp"
+#pragma once
+// Pass 2 of the force loop: the law on the contacts pass 1 found (find_contacts.hpp), and what
+// each contact leaves behind: its sum (force on i and n x f_t), which each of its particles adds in
+// the order of its contacts' keys (forces/force_loop.hpp), its normal where kept, and its rolling
+// couple where the model has one.
+//
+// The plain version is three loops in force_loop.cpp (any model); a model whose sub-models are all
+// written over lanes (ContactModel::four_wide: cundall and hertz, with either tangential law and
+// any rolling law; contact/contact_law.hpp, simd/lanes.hpp) also runs four contacts at a time with
+// AVX2 here: the same source, so the same bits. A template here, instantiated by force_loop.cpp
+// for the models it compiles (so that the two lists cannot disagree).
+#include <algorithm>
+#include <cstdint>
 
 #include "contact/contact_law.hpp"
+#include "contact/contact_list.hpp"
+#include "core/types.hpp"
+#include "forces/find_contacts.hpp"
 #include "simd/lanes.hpp"
 #include "simd/lanes_avx2.hpp"
 #include "simd/layout.hpp"
 #include "simd/memory.hpp"
 #include "simd/simd.hpp"
+#include "state/materials.hpp"
+#include "state/particles.hpp"
 
 namespace dem {
 
+// What pass 2 reads and writes, as bare arrays (see CandidateArrays).
+struct PairLawArrays {
+  const Vec3* v;
+  const Vec3* w;
+  const double* radius;
+  const double* mass;
+  const int* material;
+  const std::uint8_t* fixed;
+  const int* slot_i;
+  const int* slot_j;
+  std::uint8_t* bonded;
+  Vec3* spring;
+  Vec3* rolling;
+  double* dashpot;
+  Vec3* normal;
+  ContactSum* sum;
+  bool keep_normals;  // the normal of every contact (SimParams::keep_pair_results)
+
+  PairLawArrays(const Particles& p, ContactList& pc, bool keep)
+      : v(p.v.data()), w(p.w.data()), radius(p.radius.data()), mass(p.mass.data()), material(p.material.data()),
+        fixed(p.fixed.data()), slot_i(pc.slot_i.data()), slot_j(pc.slot_j.data()), bonded(pc.bonded.data()),
+        spring(pc.spring.data()), rolling(pc.rolling.data()), dashpot(pc.dashpot.data()), normal(pc.normal.data()), sum(pc.sum.data()), keep_normals(keep) {}
+};
+
+// What the law of contact k leaves: its sum (the force on i and n x f_t), and its normal where
+// a.keep_normals.
+inline void keep_pair_result(const PairLawArrays& a, long k, const Vec3& n, const Vec3& on_i, const Vec3& torque_per_radius) {
+  if (a.keep_normals) a.normal[k] = n;
+  a.sum[k] = {on_i, torque_per_radius};
+}
+
+// overlap / radius where it may exceed `worst`, else 0: the division (one per contact) is done only
+// near a new largest value. The margin keeps the result exact: whenever the quotient exceeds
+// `worst`, the product test passes despite rounding, so the maximum is the same as dividing always.
+inline double relative_overlap_if_larger(double overlap, double radius, double worst) {
+  return overlap >= worst * radius * (1 - 1e-9) ? overlap / radius : 0.0;
+}
+
 #ifdef DEM_SIMD_LOOPS
-namespace {
+namespace four_wide {
 
 using lanes::Lanes4;
 using lanes::Mask4;
-using lanes::Triple;
-using V3 = Triple<Lanes4>;
-using Model = ContactModel<CundallNormal>;  // the model of every scene without bonds
+using V3 = lanes::Triple<Lanes4>;
 
 DEM_AVX2_INLINE V3 load3(const double* x, const double* y, const double* z) { return {simd::load(x), simd::load(y), simd::load(z)}; }
 DEM_AVX2_INLINE V3 load_four(const Vec3* base, const int (&slot)[4]) { return simd::load_four(base, slot[0], slot[1], slot[2], slot[3]); }
@@ -24,25 +77,31 @@ DEM_AVX2_INLINE V3 load_four(const Vec3* base, const int (&slot)[4]) { return si
 DEM_AVX2_INLINE Lanes4 param(const PairParams* const (&pp)[4], double PairParams::*field) {
   return lanes::lanes4(pp[0]->*field, pp[1]->*field, pp[2]->*field, pp[3]->*field);
 }
-// What the law reads of four lanes' pair parameters, by PairParams' names (contact/contact_law.hpp).
+// What the laws read of four lanes' pair parameters, by PairParams' names (contact/contact_law.hpp);
+// a model's loop reads only its own (the rest are never loaded).
 struct LawParams {
   Lanes4 kn, kt, mu, damping_n, damping_t, cohesion;
+  Lanes4 hertz_modulus, hertz_damping, mindlin_modulus, mindlin_damping, rolling_friction;
   Mask4 no_viscous_attraction;
   DEM_AVX2_INLINE explicit LawParams(const PairParams* const (&pp)[4])
       : kn(param(pp, &PairParams::kn)), kt(param(pp, &PairParams::kt)), mu(param(pp, &PairParams::mu)),
         damping_n(param(pp, &PairParams::damping_n)), damping_t(param(pp, &PairParams::damping_t)),
-        cohesion(param(pp, &PairParams::cohesion)),
+        cohesion(param(pp, &PairParams::cohesion)), hertz_modulus(param(pp, &PairParams::hertz_modulus)),
+        hertz_damping(param(pp, &PairParams::hertz_damping)), mindlin_modulus(param(pp, &PairParams::mindlin_modulus)),
+        mindlin_damping(param(pp, &PairParams::mindlin_damping)), rolling_friction(param(pp, &PairParams::rolling_friction)),
         no_viscous_attraction(lanes::mask4(pp[0]->no_viscous_attraction, pp[1]->no_viscous_attraction,
                                            pp[2]->no_viscous_attraction, pp[3]->no_viscous_attraction)) {}
 };
-// What the first `count` of four contacts (k) leave: keep_pair_result's and the dashpot's mark,
-// lane by lane; each vector written with one masked store of its three doubles (nothing written
-// past it), the marks in the same loop (one loop's overhead, not two).
+// What the first `count` of four contacts (k) leave: keep_pair_result's, the dashpot's mark and,
+// with Couples, the rolling couple, lane by lane; each vector written with one masked store of its
+// three doubles (nothing written past it), all in one loop (one loop's overhead, not several).
+template <bool Couples>
 DEM_AVX2_INLINE void keep_results(const PairLawArrays& a, const int (&k)[4], int count, const V3& spring, const V3& n,
-                                  const V3& on_i, const V3& torque_per_radius, const Lanes4& mark) {
-  Lanes4 s[4], f[4], t[4], nl[4];
+                                  const V3& on_i, const V3& torque_per_radius, const Lanes4& mark, const V3& couple) {
+  Lanes4 s[4], f[4], t[4], nl[4], m[4];
   simd::per_lane(spring, s), simd::per_lane(on_i, f), simd::per_lane(torque_per_radius, t);
   if (a.keep_normals) simd::per_lane(n, nl);
+  if constexpr (Couples) simd::per_lane(couple, m);
   alignas(32) double marks[4];
   simd::store_aligned(marks, mark);
   for (int l = 0; l < count; ++l) {
@@ -51,14 +110,17 @@ DEM_AVX2_INLINE void keep_results(const PairLawArrays& a, const int (&k)[4], int
     simd::store_xyz(a.sum[k[l]].force.data(), f[l]);
     simd::store_xyz(a.sum[k[l]].torque_per_radius.data(), t[l]);
     if (a.keep_normals) simd::store_xyz(a.normal[k[l]].data(), nl[l]);
+    if constexpr (Couples) simd::store_xyz(a.rolling[k[l]].data(), m[l]);  // summed with the loads (force_loop.cpp)
   }
 }
 
 // The kinematics of force_loop.cpp's plain pass 2 and the law of contact/contact_law.hpp with
-// CundallNormal, four contacts at a time (L = Lanes4): the same operations in the same order.
-// The law and the lane operations are always inlined here, where AVX2 is allowed.
-template <bool Fixed, bool Bonds>
-DEM_AVX2 double cundall_law_avx2(const PairLawArrays a, const MaterialTable& materials, double dt, const FoundInChunk found, int m) {
+// Model, four contacts at a time (L = Lanes4): the same operations in the same order. The law and
+// the lane operations are always inlined here, where AVX2 is allowed.
+template <class Model, bool Fixed, bool Bonds>
+DEM_AVX2 double pair_law(const PairLawArrays a, const MaterialTable& materials, double dt, const FoundInChunk found, int m) {
+  using Tangential = typename Model::TangentialModel;
+  constexpr bool kRollingHistory = Model::RollingModel::has_history;
   if (m == 0) return 0;
   // Lanes past the last contact repeat it: computed, never kept.
   for (int q = m; q < m + 3; ++q)
@@ -98,10 +160,12 @@ DEM_AVX2 double cundall_law_avx2(const PairLawArrays a, const MaterialTable& mat
     const Lanes4 ri = simd::gather(a.radius, i), rj = simd::gather(a.radius, j);
     c.overlap = (ri + rj) - dist;
     c.v_rel = load_four(a.v, jl) - load_four(a.v, il);
-    c.w_arm = rj * load_four(a.w, jl) + ri * load_four(a.w, il);
+    const V3 wi = load_four(a.w, il), wj = load_four(a.w, jl);
+    c.w_arm = rj * wj + ri * wi;
+    if constexpr (Model::has_rolling) c.w_rel = wi - wj;
     const Lanes4 mi = simd::gather(a.mass, i), mj = simd::gather(a.mass, j);
     c.m_eff = (mi * mj) / (mi + mj);
-    c.r_eff = (ri * rj) / (ri + rj);  // eq. H3 (the Cundall law reads none: compiled away)
+    c.r_eff = (ri * rj) / (ri + rj);  // eq. H3 (a law that reads none: compiled away)
     if constexpr (Fixed) {  // effective_mass: against a fixed particle, the other's mass
       const std::uint8_t* fixed = a.fixed;
       c.m_eff = lanes::select(lanes::mask4(fixed[il[0]], fixed[il[1]], fixed[il[2]], fixed[il[3]]), mj,
@@ -119,13 +183,15 @@ DEM_AVX2 double cundall_law_avx2(const PairLawArrays a, const MaterialTable& mat
     }
     // Without bonds (Bonds false: no contact of the scene holds one) every lane's flag is false.
     Mask4 bonded = Bonds ? lanes::mask4(a.bonded[kl[0]], a.bonded[kl[1]], a.bonded[kl[2]], a.bonded[kl[3]]) : Mask4{};
-    V3 spring = Model::TangentialModel::in_tangent_plane(load_four(a.spring, kl), c.n);
+    V3 spring = Tangential::in_tangent_plane(load_four(a.spring, kl), c.n);
+    V3 rolling{};
+    if constexpr (kRollingHistory) rolling = Tangential::in_tangent_plane(load_four(a.rolling, kl), c.n);
     Lanes4 mark = simd::gather(a.dashpot, k);
-    const LaneForce<Lanes4> f = Model::evaluate_in_plane(law, c, dt, spring, bonded, mark);  // clears bonded where a bond breaks
+    const LaneForce<Lanes4> f = Model::evaluate_in_plane(law, c, dt, spring, bonded, mark, rolling);  // clears bonded where a bond breaks
     const V3 torque_per_radius = cross(c.n, f.tangential);
 
     const int count = std::min(4, m - e);
-    keep_results(a, kl, count, spring, c.n, f.on_i, torque_per_radius, mark);
+    keep_results<Model::has_rolling>(a, kl, count, spring, c.n, f.on_i, torque_per_radius, mark, f.couple);
     if constexpr (Bonds)
       for (int l = 0; l < count; ++l) a.bonded[kl[l]] = bonded.v[l] != 0;
     // relative_overlap_if_larger's test on every lane with the group's first `worst`: where no lane
@@ -141,22 +207,25 @@ DEM_AVX2 double cundall_law_avx2(const PairLawArrays a, const MaterialTable& mat
   return worst;
 }
 
-}  // namespace
+}  // namespace four_wide
 #endif
 
-template <bool Fixed>
-double cundall_pair_law_simd(const PairLawArrays a, const MaterialTable& materials, double dt, const FoundInChunk found, int m,
-                             bool any_bonds) {
+// The law of Model (ContactModel::four_wide) four contacts at a time on the m contacts `found`
+// (whose arrays hold kFoundPadding entries more), as the plain loops would; returns the largest
+// overlap relative to the smaller radius. Only where simd_loops_on(). (Arrays by value, as
+// find_contacts.) any_bonds: some contact may be bonded (else every bonded flag is taken as 0,
+// unread).
+template <class Model, bool Fixed>
+double pair_law_four_wide(const PairLawArrays a, const MaterialTable& materials, double dt, const FoundInChunk found, int m,
+                          bool any_bonds) {
+  static_assert(Model::four_wide, "a model with a sub-model not written over lanes runs the plain loops");
 #ifdef DEM_SIMD_LOOPS
-  return any_bonds ? cundall_law_avx2<Fixed, true>(a, materials, dt, found, m)
-                   : cundall_law_avx2<Fixed, false>(a, materials, dt, found, m);
+  return any_bonds ? four_wide::pair_law<Model, Fixed, true>(a, materials, dt, found, m)
+                   : four_wide::pair_law<Model, Fixed, false>(a, materials, dt, found, m);
 #else
   (void)a, (void)materials, (void)dt, (void)found, (void)m, (void)any_bonds;
   return 0;  // never called: simd_loops_on() is false
 #endif
 }
-
-template double cundall_pair_law_simd<false>(PairLawArrays, const MaterialTable&, double, FoundInChunk, int, bool);
-template double cundall_pair_law_simd<true>(PairLawArrays, const MaterialTable&, double, FoundInChunk, int, bool);
 
 }  // namespace dem
