@@ -6,6 +6,7 @@
 #include <omp.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <numbers>
@@ -305,6 +306,27 @@ TEST(Fibres, LongFibresGiveTheSameBitsForThreadsStorageAndRestart) {
   for (int n = 0; n < steps / 2; ++n) back.advance();
   omp_set_num_threads(1);
   expect_same(plain, finish(back), "restarted from a checkpoint half way");
+}
+
+// A tie whose particle has gone stays gone: resolve() searches the ids when the storage changes (the
+// first step, the removal), not again every step after it (it did: a sort of all particles per
+// step once one tie's particle had left). The fibre's other segments keep pulling.
+TEST(Fibres, ATieWhoseParticleIsGoneDoesNotMakeEveryStepSearch) {
+  Simulation sim = fibre_cloud();
+  sim.params.sort_every = 0;  // the storage changes only by the removal
+  std::vector<char> gone(sim.particles.size());
+  for (std::size_t k = 0; k < gone.size(); ++k) gone[k] = sim.particles.id[k] == sim.fibres.tie_id[1];
+  std::size_t pulled = 0;
+  for (int n = 0; n < 200; ++n) {
+    if (n == 20) ASSERT_EQ(remove_marked(sim, gone), 1u);
+    sim.advance();
+    if (n >= 20) pulled += std::count_if(sim.fibres.tension.begin(), sim.fibres.tension.end(), [](double t) { return t > 0; });
+  }
+  EXPECT_EQ(sim.fibres.tie_slot[1], FibreSet::kGone);
+  EXPECT_EQ(sim.fibres.searches, 2u) << "one search for the first step, one after the removal";
+  for (std::size_t k = 0; k < sim.fibres.segments(); ++k)
+    if (sim.fibres.tie_of[k] == 1 || sim.fibres.tie_of[k] + 1 == 1) EXPECT_TRUE(sim.fibres.broken[k]) << "segment " << k << " at the gone tie";
+  EXPECT_GT(pulled, 0u) << "the other segments still pull";
 }
 
 // The four-wide loops (rotate_ties, add_fibre_forces: simd/simd.hpp) against the plain ones, bit for

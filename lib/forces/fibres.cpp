@@ -17,7 +17,7 @@ void FibreSet::add(const std::vector<std::pair<Index, Vec3>>& ties, const std::v
                    double modulus_, double strength_) {
   if (ties.size() < 2 || rest_lengths.size() + 1 != ties.size()) throw std::invalid_argument("FibreSet::add: a fibre needs two ties or more, one rest length per segment");
   const int f = static_cast<int>(fibres()), first = static_cast<int>(tie_id.size());
-  for (const auto& [id, offset] : ties) tie_id.push_back(id), tie_offset.push_back(offset), tie_slot.push_back(-1);
+  for (const auto& [id, offset] : ties) tie_id.push_back(id), tie_offset.push_back(offset), tie_slot.push_back(kNotFound);
   first_tie.push_back(static_cast<int>(tie_id.size()));
   area.push_back(area_), modulus.push_back(modulus_), strength.push_back(strength_);
   for (std::size_t s = 0; s < rest_lengths.size(); ++s)
@@ -32,7 +32,7 @@ void FibreSet::index() {
   for (std::size_t s = 0; s < rest.size(); ++s)
     stiffness.push_back(modulus[fibre_of[s]] * area[fibre_of[s]] / rest[s]), breaking.push_back(strength[fibre_of[s]] * area[fibre_of[s]]);
   tension.assign(rest.size(), 0.0);
-  tie_slot.assign(tie_id.size(), -1);
+  tie_slot.assign(tie_id.size(), kNotFound);
 }
 
 void FibreSet::resolve(const Particles& p) {
@@ -40,19 +40,21 @@ void FibreSet::resolve(const Particles& p) {
   const Index* id = p.id.data();
   bool current = true;
   for (std::size_t t = 0; t < tie_id.size(); ++t) {
-    const std::size_t s = static_cast<unsigned>(tie_slot[t]);  // -1 (gone) beyond any n
+    if (tie_slot[t] == kGone) continue;
+    const std::size_t s = static_cast<unsigned>(tie_slot[t]);  // kNotFound beyond any n
     if (s >= n || id[s] != tie_id[t]) {
       current = false;
       break;
     }
   }
   if (current) return;
+  ++searches;
   std::vector<std::pair<Index, int>> by_id(n);
   for (std::size_t k = 0; k < n; ++k) by_id[k] = {p.id[k], static_cast<int>(k)};
   std::sort(by_id.begin(), by_id.end());
   for (std::size_t t = 0; t < tie_id.size(); ++t) {
     const auto it = std::lower_bound(by_id.begin(), by_id.end(), std::pair<Index, int>{tie_id[t], -1});
-    tie_slot[t] = it != by_id.end() && it->first == tie_id[t] ? it->second : -1;
+    tie_slot[t] = it != by_id.end() && it->first == tie_id[t] ? it->second : kGone;
   }
   for (std::size_t s = 0; s < rest.size(); ++s)
     if (tie_slot[tie_of[s]] < 0 || tie_slot[tie_of[s] + 1] < 0) broken[s] = 1, tension[s] = 0;

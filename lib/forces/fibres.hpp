@@ -37,7 +37,9 @@ struct FibreSet {
   std::vector<int> tie_of, fibre_of;    // derived (index())
   std::vector<double> stiffness;        // derived: EA/L0 [N/m], so that a step divides by nothing
   std::vector<double> breaking;         // derived: sigma_t A [N], the tension at which it breaks (eq. P62)
-  std::vector<int> tie_slot;            // derived: each tie's particle's storage slot, -1: gone
+  static constexpr int kGone = -1, kNotFound = -2;
+  std::vector<int> tie_slot;            // derived: each tie's particle's storage slot, or kGone, kNotFound (not yet searched)
+  std::size_t searches = 0;             // how often resolve() has searched the ids (tests)
 
   std::size_t fibres() const { return area.size(); }
   std::size_t ties() const { return tie_id.size(); }
@@ -51,7 +53,8 @@ struct FibreSet {
   // Rebuilds tie_of, fibre_of, stiffness, breaking and sizes tension and tie_slot (after add or a checkpoint read).
   void index();
   // Finds each tie's slot again if any no longer holds its particle (checked every step, O(ties));
-  // segments next to a tie whose particle is gone break. Allocates only when it searches.
+  // segments next to a tie whose particle is gone break. A particle gone stays gone (ids are never
+  // used again), so its ties do not make it search again. Allocates only when it searches.
   void resolve(const Particles& p);
   // The present tie point of tie t [m] (slot resolved).
   Vec3 tie_point(const Particles& p, int t) const { return p.x[tie_slot[t]] + tie_offset[t]; }

@@ -1,0 +1,63 @@
+#!/usr/bin/env bash
+# Speed against error for the sand-production case's production phase (issue 32), on the small
+# version (small.toml): the same drilled slab produced for its 3 ms with the time step (FRAC 0.2, 0.1
+# and 0.05; run-stage refuses more than 0.2 unless forced) (FRAC, the
+# fraction of the critical step, docs/physics.md eq. P5) and the void fraction's support
+# (void_cutoff, docs/physics.md "Local void fraction") changed one at a time from the case's own
+# (FRAC 0.2, void_cutoff 0.033 m = 3 mean diameters). For each run: the produced grains and mass,
+# the hoop and radial stress in the bins at 1.2a-2a and beyond 2a (post-macro, scripts/well_report.py),
+# the broken-bond fraction, and the stepping wall time and particle-steps per second.
+# Writes OUT/speed_error.csv and OUT/speed_error.md (the README's table).
+# Usage: bash workflows/sand-production/speed_error.sh [BUILD] [OUT]   (about 3 minutes on 2 cores)
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+bin=${1:-build}/tools out=${2:-out/sand-production/speed_error}
+py=/usr/bin/python3
+case_dir=workflows/sand-production
+mkdir -p "$out"
+q=--quiet
+# The chain up to the drilled slab, once (tests/sand_production_small.sh's).
+if [ ! -e "$out/drilled.h5" ]; then
+  "$bin/gen-primary" --scene $case_dir/small-generate.toml --out "$out/settled.h5" $q
+  "$bin/compact" --scene $case_dir/small-generate.toml --in "$out/settled.h5" --out "$out/compacted.h5" $q
+  "$bin/run-stage" --scene $case_dir/small.toml --stage load --in "$out/compacted.h5" --out "$out/loaded.h5" $q
+  "$bin/run-stage" --scene $case_dir/small.toml --stage cement --in "$out/loaded.h5" --out "$out/cemented.h5" $q
+  "$bin/run-stage" --scene $case_dir/small.toml --stage drill --in "$out/cemented.h5" --out "$out/drilled.h5" $q
+fi
+echo "frac,void_cutoff_m,steps,stepping_s,particle_steps_per_s,produced_grains,produced_kg,stt_near_MPa,srr_near_MPa,stt_far_MPa,srr_far_MPa,broken_fraction" > "$out/speed_error.csv"
+for run in "0.2 0.033" "0.1 0.033" "0.05 0.033" "0.2 0.022" "0.2 0.044"; do
+  read -r frac cutoff <<< "$run"
+  name=frac${frac}_cut${cutoff}
+  sed -e "s/^frac = 0.2$/frac = $frac/" -e "s/^void_cutoff = 0.033 .*/void_cutoff = $cutoff/" $case_dir/small.toml > "$out/$name.toml"
+  grep -q "^frac = $frac$" "$out/$name.toml" && grep -q "^void_cutoff = $cutoff$" "$out/$name.toml" ||
+    { echo "small.toml's frac or void_cutoff was not found"; exit 1; }
+  "$bin/run-stage" --scene "$out/$name.toml" --stage produce --in "$out/drilled.h5" --out "$out/$name.h5" 2> "$out/$name.log" > /dev/null
+  "$bin/post-macro" --in "$out/$name.h5" --reference "$out/cemented.h5" --vtk "$out/$name.vtu" $q
+  "$py" scripts/well_report.py --stress "$out/$name.vtu" --bonds-made "$out/cemented.h5" --bonds-now "$out/$name.h5" \
+    --centre 0.14,0.14 --radius 0.035 --sigma0 18e6 --outer 0.126 --bin 0.014 --prefix "$out/$name" > /dev/null
+  "$py" - "$out" "$name" "$frac" "$cutoff" >> "$out/speed_error.csv" <<'PY'
+import csv, re, sys
+out, name, frac, cutoff = sys.argv[1:]
+log = open(f"{out}/{name}.log").read()
+m = re.search(r"stage produce done: (\d+) steps in ([0-9.]+) s wall time, ([0-9.e+]+) particle-steps/s", log)
+sink = list(csv.DictReader(open(f"{out}/{name}.sink.csv")))[-1]
+rows = list(csv.DictReader(open(f"{out}/{name}_kirsch.csv")))
+mean = lambda sel, k: sum(float(r[k]) for r in sel) / len(sel) / 1e6
+near = [r for r in rows if float(r["r_over_a"]) < 2]
+far = [r for r in rows if float(r["r_over_a"]) >= 2]
+bonds = list(csv.DictReader(open(f"{out}/{name}_bonds.csv")))
+broken = sum(int(r["broken"]) for r in bonds) / max(1, sum(int(r["bonds"]) for r in bonds))
+print(f"{frac},{cutoff},{m[1]},{m[2]},{m[3]},{sink['removed_total']},{float(sink['removed_mass_kg']):.4g},"
+      f"{mean(near, 'stt_Pa'):.2f},{mean(near, 'srr_Pa'):.2f},{mean(far, 'stt_Pa'):.2f},{mean(far, 'srr_Pa'):.2f},{broken:.4f}")
+PY
+done
+"$py" - "$out" > "$out/speed_error.md" <<'PY'
+import csv, sys
+rows = list(csv.DictReader(open(f"{sys.argv[1]}/speed_error.csv")))
+print("| FRAC | void_cutoff [m] | steps | stepping [s] | particle-steps/s | produced grains | produced [g] | σθθ / σrr, r < 2a [MPa] | σθθ / σrr, r ≥ 2a [MPa] | bonds broken |")
+print("|---|---|---|---|---|---|---|---|---|---|")
+for r in rows:
+    print(f"| {r['frac']} | {r['void_cutoff_m']} | {r['steps']} | {r['stepping_s']} | {float(r['particle_steps_per_s']):.3g} | {r['produced_grains']} | "
+          f"{1000 * float(r['produced_kg']):.1f} | {r['stt_near_MPa']} / {r['srr_near_MPa']} | {r['stt_far_MPa']} / {r['srr_far_MPa']} | {r['broken_fraction']} |")
+PY
+cat "$out/speed_error.md"
