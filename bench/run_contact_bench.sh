@@ -9,7 +9,7 @@ out=bench/results/contact.md
   echo "# Contact physics: speed against error, and the price of each option"
   echo
   echo "Measured $(date -u +%Y-%m-%d) on $(nproc) cores ($(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')),"
-  echo "dem $(build/tools/run-stage --version | awk '{print $NF}'), g++ -O3. Reproduce: \`bash bench/run_contact_bench.sh\`."
+  echo "dem at commit $(build/tools/run-stage --version | awk '{print $NF}' | tr -d ')'), g++ -O3. Reproduce: \`bash bench/run_contact_bench.sh\`."
   echo
   echo "## Speed against error (FRAC of docs/physics.md eq. P5)"
   echo
@@ -25,8 +25,8 @@ out=bench/results/contact.md
   echo
   echo "Contacts: particle-particle plus particle-wall at the end of the run. Without bonds the liu"
   echo "law runs the cundall force loop (a scene pays only for what it uses); with bonds, liu and"
-  echo "mendes run the plain loops (the cundall law alone has a four-wide version), whose price the"
-  echo "last column shows; single runs differ by about 5 % on this machine (compare the first two"
+  echo "mendes run the plain loops (the other laws, rolling included, run four contacts at a time),"
+  echo "whose price the last column shows; single runs differ by about 5 % on this machine (compare the first two"
   echo "rows, which do the same work). Particle-wall candidates are listed with the neighbour list"
   echo "(rebuilt only when something moved half the skin), so walls that touch nothing cost almost nothing."
   echo "The hertz rows use E = 5e8 Pa and nu = 0.3 (as stiff as kn = 2000 N/m where a bead carries its"
