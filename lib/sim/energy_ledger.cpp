@@ -254,9 +254,8 @@ void Simulation::account_energy(bool any_fixed) {
       sums.add(mine);
     }
   };
-  // The normal law the force loop ran (force_loop.hpp): one for all pairs, or each pair's own.
-  const ForceVariant variant = choose_force_variant(materials, has_bonds());
-  if (variant) with_normal_law(variant->normal, account_all);
+  // The normal law the force loop ran this step (force_loop.hpp): one for all pairs, or each pair's own.
+  if (force_variant_) with_normal_law(force_variant_->normal, account_all);
   else account_all(MixedNormal{});
   const ContactTerms& t = sums.c;
   ledger_pair_bonded_.clear();

@@ -2,6 +2,7 @@
 // A Simulation only wires the components together: particles, materials, walls, contacts, the
 // force loop and the integrator. Everything here is part of the checkpoint (io/checkpoint.hpp).
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "contact/contact_list.hpp"
@@ -211,6 +212,7 @@ class Simulation {
   std::vector<Vec3> ledger_x_, ledger_v_, ledger_w_;
   std::vector<std::uint8_t> ledger_pair_bonded_, ledger_wall_bonded_;
   std::vector<std::uint8_t> ledger_fibre_broken_;  // the fibre segments broken before the force loop
+  std::optional<ModelChoice> force_variant_;  // the force loop's this step (force_loop.hpp's ForceVariant)
 };
 
 }  // namespace dem

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Speed against error for the sand-production case's production phase (issue 32), on the small
-# version (small.toml): the same drilled slab produced for its 3 ms with the time step (FRAC 0.2, 0.1
-# and 0.05; run-stage refuses more than 0.2 unless forced) (FRAC, the
-# fraction of the critical step, docs/physics.md eq. P5) and the void fraction's support
+# version (small.toml): the same drilled slab produced for its 3 ms with the time step (FRAC, the
+# fraction of the critical step, docs/physics.md eq. P5: 0.2, 0.1 and 0.05; run-stage refuses more
+# than 0.2 unless forced) and the void fraction's support
 # (void_cutoff, docs/physics.md "Local void fraction") changed one at a time from the case's own
 # (FRAC 0.2, void_cutoff 0.033 m = 3 mean diameters). For each run: the produced grains and mass,
 # the hoop and radial stress in the bins at 1.2a-2a and beyond 2a (post-macro, scripts/well_report.py),
