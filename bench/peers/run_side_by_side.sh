@@ -43,10 +43,7 @@ if [[ " $parts " == *" heap "* ]]; then
   for seed in 1 2 3 4; do
     sed "s/^seed = 1$/seed = $seed/" bench/peers/heap.toml > "$tmp/heap.toml"
     OMP_NUM_THREADS=1 build/tools/run-stage --scene "$tmp/heap.toml" --stage pour --in "$tmp/start.h5" --out "$tmp/heap.h5" --quiet
-    "$py" -c 'import sys, h5py, numpy as np
-f = h5py.File(sys.argv[1], "r")
-np.savetxt(sys.stdout, np.column_stack([f["particles/position"][:], f["particles/radius"][:]]), delimiter=",", header="x,y,z,radius", comments="")' \
-      "$tmp/heap.h5" > "$tmp/dem.$seed.csv"
+    "$py" "$sbs" checkpoint-positions "$tmp/heap.h5" > "$tmp/dem.$seed.csv"
     echo "dem,$seed,$("$py" "$sbs" heap-angle "$tmp/dem.$seed.csv"),$(($(wc -l < "$tmp/dem.$seed.csv") - 1))" | tee -a "$res/peers_physics_heap.csv"
   done
   for seed in 10007 10009 10037 10039; do  # LIGGGHTS asks for primes above 10,000

@@ -21,6 +21,8 @@ bench/peers/run_side_by_side.sh and of the suite test reference.liggghts_settle.
       LIGGGHTS thermo (step atoms ke c_rke v_zmax c_ncontacts) to step,ke_J,rke_J,coordination.
   side_by_side.py dump-final DUMP
       The last frame of a LIGGGHTS custom dump (id x y z radius) as x,y,z,radius rows.
+  side_by_side.py checkpoint-positions FILE.h5
+      Our checkpoint's particles as x,y,z,radius rows.
 
 The tolerance: with n1 and n2 seeds, s_p the pooled seed standard deviation, the difference of the
 means has standard error s_p sqrt(1/n1 + 1/n2); k = t(n1 + n2 - 2, 1 - alpha / (2 M)) sqrt(1/n1 +
@@ -225,6 +227,13 @@ def dump_final(path):
         print(",".join(w))
 
 
+def checkpoint_positions(path):
+    import h5py
+    with h5py.File(path, "r") as f:
+        rows = np.column_stack([f["particles/position"][:], f["particles/radius"][:]])
+    np.savetxt(sys.stdout, rows, delimiter=",", header="x,y,z,radius", comments="")
+
+
 if __name__ == "__main__":
     cmd = sys.argv[1] if len(sys.argv) > 1 else ""
     if cmd == "settle" and len(sys.argv) in (5, 6):
@@ -242,6 +251,8 @@ if __name__ == "__main__":
         sys.exit(heap_plot(sys.argv[2], sys.argv[3:cut], sys.argv[cut + 1:]))
     if cmd == "lammps-log" and len(sys.argv) == 3:
         sys.exit(lammps_log(sys.argv[2]))
+    if cmd == "checkpoint-positions" and len(sys.argv) == 3:
+        sys.exit(checkpoint_positions(sys.argv[2]))
     if cmd == "dump-final" and len(sys.argv) == 3:
         sys.exit(dump_final(sys.argv[2]))
     sys.exit(__doc__)
