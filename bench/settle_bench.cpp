@@ -12,17 +12,28 @@
 //                                         the same with the storage order shuffled (as random
 //                                         placement leaves it) and re-sorted along the cells every
 //                                         SORT_EVERY steps (0 = never): the price of poor locality
-//   settle_bench lammps-data N FILE       writes the same initial state as a LAMMPS data file
+//   settle_bench series N STEPS EVERY SEED MODEL [FRICTION ROLLING_FRICTION]
+//                                         the side-by-side check with LIGGGHTS (bench/peers/
+//                                         run_side_by_side.sh): the scene with initial velocities
+//                                         drawn from SEED, one thread, a CSV row every EVERY steps:
+//                                         step, time, translational and rotational kinetic energy,
+//                                         mean coordination 2 x pair contacts / N (walls not
+//                                         counted, as LIGGGHTS's compute contact/atom); a Hertz
+//                                         MODEL, its friction and rolling friction optionally changed
+//   settle_bench lammps-data N FILE [SEED]
+//                                         writes the same initial state as a LAMMPS data file
 // The loop time covers the steps only (scene construction excluded), as LAMMPS's "Loop time".
 #include <omp.h>
 
 #include <chrono>
 #include <cmath>
 #include <string>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <exception>
+#include <stdexcept>
 #include <numeric>
 #include <random>
 #include <algorithm>
@@ -62,6 +73,23 @@ int run(long n, long steps, int threads, long floor_triangles = 0, long shuffled
   return 0;
 }
 
+// The `series` mode above: what run_side_by_side.sh compares with LIGGGHTS's thermo output.
+int series(long n, long steps, long every, std::uint64_t seed, bench::ContactModel model, bench::HertzBead bead) {
+  omp_set_num_threads(1);
+  Simulation sim = bench::settle_scene(bench::settle_size(n), 0.5, true, model, seed, bead);
+  sim.params.keep_pair_results = false;
+  std::printf("step,time_s,ke_J,rke_J,coordination\n");
+  for (long s = 0;; ++s) {
+    if (s % every == 0 || s == steps) {
+      const double rke = bench::rotational_energy(sim);
+      std::printf("%ld,%.9g,%.10g,%.10g,%.6f\n", s, s * sim.dt, sim.kinetic_energy() - rke, rke,
+                  2.0 * static_cast<double>(sim.pair_contact_count()) / static_cast<double>(sim.particles.size()));
+    }
+    if (s == steps) return 0;
+    sim.advance();
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -73,16 +101,28 @@ int main(int argc, char** argv) {
       return run(std::atol(argv[2]), std::atol(argv[3]), std::atoi(argv[4]), std::atol(argv[5]));
     if (argc == 6 && std::strcmp(argv[1], "shuffled") == 0)
       return run(std::atol(argv[2]), std::atol(argv[3]), std::atoi(argv[4]), 0, std::atol(argv[5]));
-    if (argc == 4 && std::strcmp(argv[1], "lammps-data") == 0) {
+    if ((argc == 7 || argc == 9) && std::strcmp(argv[1], "series") == 0) {
+      bench::HertzBead bead = bench::kSettleHertz;
+      if (argc == 9) {
+        bead.friction = std::atof(argv[7]);
+        bead.rolling_friction = std::atof(argv[8]);
+      }
+      const bench::ContactModel model = bench::contact_model_named(argv[6]);
+      if (model == bench::ContactModel::Linear) throw std::invalid_argument("series: the model must be hertz or hertz-rolling");
+      return series(std::atol(argv[2]), std::atol(argv[3]), std::max(1L, std::atol(argv[4])), std::strtoull(argv[5], nullptr, 10), model, bead);
+    }
+    if ((argc == 4 || argc == 5) && std::strcmp(argv[1], "lammps-data") == 0) {
       const long n = std::atol(argv[2]);
       const bench::LatticeSize size = bench::settle_size(n);
-      bench::write_lammps_data(bench::settle_scene(size), size, argv[3]);
+      const std::uint64_t seed = argc == 5 ? std::strtoull(argv[4], nullptr, 10) : 12345;
+      bench::write_lammps_data(bench::settle_scene(size, 0.5, true, bench::ContactModel::Linear, seed), size, argv[3]);
       return 0;
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "settle_bench: %s\n", e.what());
     return 1;
   }
-  std::fprintf(stderr, "usage: settle_bench run N STEPS THREADS [linear|hertz|hertz-rolling] | settle_bench mesh N STEPS THREADS TRIANGLES | settle_bench lammps-data N FILE\n");
+  std::fprintf(stderr, "usage: settle_bench run N STEPS THREADS [linear|hertz|hertz-rolling] | settle_bench mesh N STEPS THREADS TRIANGLES | "
+                       "settle_bench series N STEPS EVERY SEED hertz|hertz-rolling [FRICTION ROLLING_FRICTION] | settle_bench lammps-data N FILE [SEED]\n");
   return 2;
 }

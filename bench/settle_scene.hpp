@@ -6,6 +6,7 @@
 // kn = 2000 N/m, kt = 2/7 kn, friction 0.5, dt = 1e-5 s, skin 0.2 mm: the scene with which LAMMPS
 // and LIGGGHTS were run (bench/peers/in.settle.*), with our damping set to their coefficients.
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <numbers>
 #include <random>
@@ -57,8 +58,8 @@ inline MaterialTable settle_materials(double eta = 0.5) {
 constexpr HertzBead kSettleHertz{2500, 5e6, 0.3, 0.5, 0.5, 0.1};
 constexpr double kSettleHertzDt = 5e-6;
 
-inline MaterialTable settle_hertz_materials(ContactModel model) {
-  Material bead = hertz_material("bead", kSettleHertz, model), wall = bead;
+inline MaterialTable settle_hertz_materials(ContactModel model, const HertzBead& b = kSettleHertz) {
+  Material bead = hertz_material("bead", b, model), wall = bead;
   wall.name = "wall";
   return MaterialTable({bead, wall}, {});
 }
@@ -83,14 +84,17 @@ constexpr double kSpacing = 0.0025, kRadius = 0.001, kDensity = 2500;
 
 inline Vec3 settle_box(const LatticeSize& s) { return Vec3(s.nx * kSpacing, s.ny * kSpacing, (s.nz + 2) * kSpacing); }
 
-inline Simulation settle_scene(const LatticeSize& size, double eta = 0.5, bool walls = true, ContactModel model = ContactModel::Linear) {
+// `seed` draws the initial velocities (12345: the speed benchmarks' state); `hertz` is the Hertz
+// models' material (the side-by-side check, bench/peers/run_side_by_side.sh, varies it).
+inline Simulation settle_scene(const LatticeSize& size, double eta = 0.5, bool walls = true, ContactModel model = ContactModel::Linear,
+                               std::uint64_t seed = 12345, const HertzBead& hertz = kSettleHertz) {
   Simulation sim;
-  sim.materials = model == ContactModel::Linear ? settle_materials(eta) : settle_hertz_materials(model);
+  sim.materials = model == ContactModel::Linear ? settle_materials(eta) : settle_hertz_materials(model, hertz);
   const Vec3 hi = settle_box(size);
   if (walls)
     for (int axis = 0; axis < 3; ++axis)
       for (bool side : {false, true}) sim.walls.push_back(Wall{"w", 1, box_face(Vec3::Zero(), hi, axis, side), {}});
-  std::mt19937_64 rng(12345);
+  std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> vel(-0.1, 0.1);
   Index id = 0;
   for (int k = 0; k < size.nz; ++k)
