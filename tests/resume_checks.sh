@@ -57,12 +57,12 @@ check "restart of the same run accepted" 0 "resuming stage long at step" -- \
 # scene's walls hold none of them); moved under the same name, the checkpoint's box is kept: a warning.
 sed 's/^min = \[0.0, 0.0, 0.0\]/min = [1.0, 0.0, 0.0]/; s/^max = \[0.02, 0.02, 0.05\]/max = [1.02, 0.02, 0.05]/' "$src/data/small.toml" > "$tmp/moved.toml"
 sed 's/^name = "box"/name = "crate"/; s/^wall = "box/wall = "crate/' "$tmp/moved.toml" > "$tmp/crate.toml"
-check "checkpoint outside the scene's box refused" 3 "a.h5: 84 of 84 particles lie outside the closed box \"crate\" of .*crate.toml, beyond its face crate.xmin (e.g. particle id [0-9]* at \[.*\] m, its centre 0.9[0-9]* m beyond the face): the checkpoint does not belong to this scene" -- \
+check "checkpoint outside the scene's box refused" 3 "a.h5: \\([0-9][0-9]*\\) of \\1 particles lie outside the closed box \"crate\" of .*crate.toml, beyond its face crate.xmin (e.g. particle id [0-9]* at \[.*\] m, its centre 0.9[0-9]* m beyond the face): the checkpoint does not belong to this scene" -- \
   "$bin/run-stage" --scene "$tmp/crate.toml" --stage shake --in "$tmp/a.h5" --out "$tmp/c.h5" --quiet
 [ -e "$tmp/c.h5" ] && { echo "FAIL output written for a checkpoint outside the box"; fail=1; }
-check "box of the same name moved: warned" 0 "warning: .*a.h5: 84 of 84 particles lie outside the closed box \"box\" as .*moved.toml places it, beyond its face box.xmin .*; the run keeps the box where the checkpoint left it" -- \
+check "box of the same name moved: warned" 0 "warning: .*a.h5: \\([0-9][0-9]*\\) of \\1 particles lie outside the closed box \"box\" as .*moved.toml places it, beyond its face box.xmin .*; the run keeps the box where the checkpoint left it" -- \
   "$bin/run-stage" --scene "$tmp/moved.toml" --stage shake --in "$tmp/a.h5" --out "$tmp/m.h5" --quiet
-check "particles inside: no warning" 0 "removed 36 particles" -- "$bin/run-stage" --scene "$src/data/small.toml" --stage shake --in "$tmp/a.h5" --out "$tmp/s.h5" --quiet
+check "particles inside: no warning" 0 "removed [0-9][0-9]* particles" -- "$bin/run-stage" --scene "$src/data/small.toml" --stage shake --in "$tmp/a.h5" --out "$tmp/s.h5" --quiet
 grep -q warning "$tmp/out" && { echo "FAIL a warning for particles inside the box"; cat "$tmp/out"; fail=1; }
 
 # Ctrl-C: a run with no periodic checkpoint due (every 100,000 steps) stops after the current step,

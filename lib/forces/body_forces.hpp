@@ -1,8 +1,9 @@
 #pragma once
 // Body forces: loads that act on each particle alone, from its own state and the scene's fields.
-// The force loop adds them to a particle's net load after its contacts (forces/force_loop.hpp
-// ForceBlocks), in the order of the members below, so that the order of every sum is fixed.
-// Gravity is the first, the fluid's force (forces/fluid.hpp) the second (docs/architecture.md).
+// The force loop starts a particle's net load from its weight (m g: its pair contacts are added to
+// it, which saves a pass over the particles), and adds the other body forces after its contacts
+// (forces/force_loop.hpp ForceBlocks), in the order of the members below, so that the order of
+// every sum is fixed: the fluid's force (forces/fluid.hpp) is the first (docs/architecture.md).
 #include <optional>
 
 #include "core/types.hpp"
@@ -22,8 +23,6 @@ struct BodyForces {
   // Per particle slot, its FluidField::grain at the last void-fraction update (Simulation's).
   const FluidGrains* fluid_grains = nullptr;
 
-  // Adds the body forces on a particle of mass m to its force [N].
-  void add_to(double mass, Vec3& force) const { force += mass * gravity; }
   // Adds the fluid's force on particle slots [lo, hi) (fluid_grains filled) [N], four at a time
   // where simd (the same bits).
   void add_fluid(const Particles& p, long lo, long hi, LoadSum* force, bool simd) const {

@@ -192,79 +192,88 @@ double wall_run(const ForceLoopInput& in, ContactList& wc, ForceBlocks& out, lon
   return worst;
 }
 
-// The pair contacts of particles [lo, hi) summed into their loads (written, not added to), each
-// particle's in the order of its contacts' keys (ForceBlocks::by_key): f for i, -f for j (the
-// sign bit flipped: exact), and r n x f_t. Without a branch (whether a candidate touches is a coin
-// toss to the branch predictor): mere candidates hold zeros (ContactList), and adding a zero to a
-// sum that starts at +0 never changes a bit, so the candidate set, which depends on when the list
-// was rebuilt, does not either. Four-wide with AVX2 (a contact's force and torque one masked load
-// each, a particle's loads one aligned store each), else one by one: the same additions, so the
-// same bits.
-// With couples (rolling resistance): each contact's couple joins its torque, M on i, -M on j
+// The net loads of particles [lo, hi) from their weight and their pair contacts (written, not added
+// to), each particle's in one order of its own (ForceBlocks::by_key): its weight m g, then + f of
+// the contacts where it is i, then - f of those where it is j (each run in key order); its torque
+// r Σ n x f_t over the same runs (eq. 2.31-2.34). Without a branch (whether a candidate touches is a
+// coin toss to the branch predictor): mere candidates hold +0, which changes no bit of a sum that is
+// never -0 (the weight + 0 starts it), so the candidate set, which depends on when the list was
+// rebuilt, does not either. Four-wide with AVX2 (a contact's force and torque one masked load each,
+// a particle's loads one aligned store each), else one by one: the same operations, so the same bits.
+// With couples (rolling resistance): + M where it is i, - M where it is j, added to the torque last
 // (eq. R1).
 template <bool Couples>
-void sum_pair_contacts_plain(const ForceBlocks& out, const ContactSum* sum, const Vec3* couple, const double* radius, long lo,
-                             long hi) {
+void sum_pair_contacts_plain(const ForceBlocks& out, const ContactSum* sum, const Vec3* couple, const Particles& p, long lo, long hi) {
+  const int* const by_key = out.by_key.data();
   for (long i = lo; i < hi; ++i) {
-    Vec3 force = Vec3::Zero(), torque = Vec3::Zero();
-    for (int e = out.by_key_start[i]; e < out.by_key_start[i + 1]; ++e) {
-      const unsigned code = static_cast<unsigned>(out.by_key[e]);
-      const ContactSum& c = sum[code >> 1];
-      force += (code & 1) ? Vec3(-c.force) : c.force;  // eq. 2.31-2.32
-      if constexpr (Couples) {
-        const Vec3& m = couple[code >> 1];
-        torque += radius[i] * c.torque_per_radius + ((code & 1) ? Vec3(-m) : m);
-      } else {
-        torque += radius[i] * c.torque_per_radius;  // eq. 2.33-2.34
-      }
+    Vec3 force = p.mass[i] * out.body.gravity + Vec3::Zero(), arm = Vec3::Zero(), spin = Vec3::Zero();
+    const int split = out.by_key_split[i], end = out.by_key_start[i + 1];
+    for (int e = out.by_key_start[i]; e < split; ++e) {
+      force += sum[by_key[e]].force;
+      arm += sum[by_key[e]].torque_per_radius;
+      if constexpr (Couples) spin += couple[by_key[e]];
+    }
+    for (int e = split; e < end; ++e) {
+      force -= sum[by_key[e]].force;
+      arm += sum[by_key[e]].torque_per_radius;
+      if constexpr (Couples) spin -= couple[by_key[e]];
     }
     out.force[i].v = force;
-    out.torque[i].v = torque;
+    out.torque[i].v = Couples ? Vec3(p.radius[i] * arm + spin) : Vec3(p.radius[i] * arm);
   }
 }
 #ifdef DEM_SIMD_LOOPS
 template <bool Couples>
-DEM_AVX2 void sum_pair_contacts_avx2(const ForceBlocks& out, const ContactSum* sum, const Vec3* couple, const double* radius, long lo,
+DEM_AVX2 void sum_pair_contacts_avx2(const ForceBlocks& out, const ContactSum* sum, const Vec3* couple, const Particles& p, long lo,
                                      long hi) {
   using lanes::Lanes4;
   const int* const by_key = out.by_key.data();
   const int* const start = out.by_key_start.data();
+  const int* const split = out.by_key_split.data();
+  const Lanes4 g = simd::load_xyz(out.body.gravity.data()), zero{};
+  LoadSum* const force = out.force.data();
+  LoadSum* const torque = out.torque.data();
+  const double *const mass = p.mass.data(), *const radius = p.radius.data();  // not reloaded after each store
   for (long i = lo; i < hi; ++i) {
-    const Lanes4 r = simd::broadcast(radius[i]);
-    Lanes4 f{}, t{};  // +0 in every lane
-    for (int e = start[i]; e < start[i + 1]; ++e) {
-      const unsigned code = static_cast<unsigned>(by_key[e]);
-      const double* c = sum[code >> 1].force.data();
-      f = f + simd::flip_sign_if(code & 1, simd::load_xyz(c));
-      if constexpr (Couples) t = t + (r * simd::load_xyz(c + 3) + simd::flip_sign_if(code & 1, simd::load_xyz(couple[code >> 1].data())));
-      else t = t + r * simd::load_xyz(c + 3);
+    Lanes4 f = simd::broadcast(mass[i]) * g + zero, arm{}, spin{};
+    for (int e = start[i]; e < split[i]; ++e) {
+      const double* c = sum[by_key[e]].force.data();
+      f = f + simd::load_xyz(c);
+      arm = arm + simd::load_xyz(c + 3);
+      if constexpr (Couples) spin = spin + simd::load_xyz(couple[by_key[e]].data());
     }
-    simd::store_aligned(out.force[i].v.data(), f);  // a LoadSum's fourth double is never read
-    simd::store_aligned(out.torque[i].v.data(), t);
+    for (int e = split[i]; e < start[i + 1]; ++e) {
+      const double* c = sum[by_key[e]].force.data();
+      f = f - simd::load_xyz(c);
+      arm = arm + simd::load_xyz(c + 3);
+      if constexpr (Couples) spin = spin - simd::load_xyz(couple[by_key[e]].data());
+    }
+    simd::store_aligned(force[i].v.data(), f);  // a LoadSum's fourth double is never read
+    if constexpr (Couples) simd::store_aligned(torque[i].v.data(), simd::broadcast(radius[i]) * arm + spin);
+    else simd::store_aligned(torque[i].v.data(), simd::broadcast(radius[i]) * arm);
   }
 }
 #endif
 template <bool Couples>
-void sum_pair_contacts(const ForceBlocks& out, const ContactSum* sum, const Vec3* couple, const double* radius, long lo, long hi) {
+void sum_pair_contacts(const ForceBlocks& out, const ContactSum* sum, const Vec3* couple, const Particles& p, long lo, long hi) {
 #ifdef DEM_SIMD_LOOPS
-  if (out.simd) return sum_pair_contacts_avx2<Couples>(out, sum, couple, radius, lo, hi);
+  if (out.simd) return sum_pair_contacts_avx2<Couples>(out, sum, couple, p, lo, hi);
 #endif
-  sum_pair_contacts_plain<Couples>(out, sum, couple, radius, lo, hi);
+  sum_pair_contacts_plain<Couples>(out, sum, couple, p, lo, hi);
 }
 
-// The net loads of block b's particles (ForceBlocks): each one's pair contacts in key order, then
-// its wall contacts, then the body forces. Called once every block holding a pair contact of
+// The net loads of block b's particles (ForceBlocks): each one's weight and pair contacts, then its
+// wall contacts, then the fluid's force. Called once every block holding a pair contact of
 // theirs has been computed.
 template <class Model>
 double finish_block(const ForceLoopInput& in, const ContactList& pc, ContactList& wc, ForceBlocks& out, long b,
                     WallScratch& scratch) {
   const Particles& p = in.particles;
   const long lo = b * out.block, hi = std::min(static_cast<long>(p.size()), lo + out.block);
-  sum_pair_contacts<Model::has_rolling>(out, pc.sum.data(), pc.rolling.data(), p.radius.data(), lo, hi);
+  sum_pair_contacts<Model::has_rolling>(out, pc.sum.data(), pc.rolling.data(), p, lo, hi);
   double worst = 0;
   for (int q = in.wall_block_first[b]; q < in.wall_block_first[b + 1]; ++q)
     worst = std::max(worst, wall_run<Model>(in, wc, out, in.wall_run_order[q], scratch));
-  for (long i = lo; i < hi; ++i) out.body.add_to(p.mass[i], out.force[i].v);
   if (out.body.fluid) out.body.add_fluid(p, lo, hi, out.force.data(), out.simd);
   return worst;
 }

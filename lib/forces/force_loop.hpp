@@ -53,8 +53,9 @@ struct ForceBlocks {
                                     // it are done)
   const std::vector<long>& needed_from;  // per block b: the smallest `needs` of blocks b and after
   const std::vector<int>& by_key_start;  // per slot: where its candidates start in by_key (+ the end)
-  const std::vector<int>& by_key;   // each slot's pair candidates in key order: 2k for pair k seen
-                                    // from its i, 2k + 1 from its j
+  const std::vector<int>& by_key_split;  // per slot: where those in which it is j start in by_key
+  const std::vector<int>& by_key;   // each slot's pair candidates k: those where it is i, then those
+                                    // where it is j, each run in key order
   BlockTimes& times;                // per block: its time at the last step
   std::vector<long>& done;          // per block: the epoch of the force loop that last computed it
   long epoch;                       // this force loop's: unlike any before it

@@ -49,7 +49,7 @@ void Simulation::compute_forces() {
   const bool fluid = params.fluid.on();
   if (fluid) update_fluid_grains();
   const BodyForces body{params.gravity, fluid ? &params.fluid : nullptr, &fluid_grains_};
-  ForceBlocks loads{params.load_block, block_first_, block_needs_, needed_from_, by_key_start_, by_key_, force_times_,
+  ForceBlocks loads{params.load_block, block_first_, block_needs_, needed_from_, by_key_start_, by_key_split_, by_key_, force_times_,
                     block_done_,       ++force_epoch_, body,       simd_loops_on(), block_force_, block_torque_};
   force_variant_ = choose_force_variant(materials, has_bonds());
   const double worst_overlap = compute_contact_forces(in, force_variant_, pairs_, walls_, loads);
@@ -309,25 +309,29 @@ void Simulation::index_contacts_per_particle() {
     for (long k = block_first_[b]; k < block_first_[b + 1]; ++k)
       ordered = ordered && lower_slot(k) >= b * block && lower_slot(k) < (b + 1) * block;
   if (!ordered) throw std::logic_error("pair candidates not stored along the slots");
-  // Per-particle lists of the pair candidates in the order of their keys, by which the force loop
-  // sums each particle's contacts: the same bits for any thread count and any storage order
-  // (ForceBlocks). Entry codes: 2k = pair k seen from i, 2k+1 = seen from j.
+  // Per-particle lists of the pair candidates by which the force loop sums each particle's
+  // contacts (ForceBlocks): first those where it is i, then those where it is j, each run in the
+  // order of the contacts' keys: the same bits for any thread count and any storage order.
   by_key_start_.assign(n + 1, 0);
-  for (long k = 0; k < npc; ++k) ++by_key_start_[pairs_.slot_i[k] + 1], ++by_key_start_[pairs_.slot_j[k] + 1];
-  for (std::size_t k = 0; k < n; ++k) by_key_start_[k + 1] += by_key_start_[k];
+  by_key_split_.assign(n, 0);
+  for (long k = 0; k < npc; ++k) ++by_key_start_[pairs_.slot_i[k] + 1], ++by_key_start_[pairs_.slot_j[k] + 1], ++by_key_split_[pairs_.slot_i[k]];
+  for (std::size_t k = 0; k < n; ++k) by_key_start_[k + 1] += by_key_start_[k], by_key_split_[k] += by_key_start_[k];
   if (static_cast<std::size_t>(by_key_start_[n]) > by_key_.capacity()) by_key_.reserve(by_key_start_[n]);  // no doubling
   by_key_.resize(by_key_start_[n]);
   by_key_fill_.assign(by_key_start_.begin(), by_key_start_.end() - 1);
+  std::vector<int>& j_fill = by_key_fill_j_;
+  j_fill = by_key_split_;
   for (long k = 0; k < npc; ++k) {
-    by_key_[by_key_fill_[pairs_.slot_i[k]]++] = static_cast<int>(2 * k);
-    by_key_[by_key_fill_[pairs_.slot_j[k]]++] = static_cast<int>(2 * k + 1);
+    by_key_[by_key_fill_[pairs_.slot_i[k]]++] = static_cast<int>(k);
+    by_key_[j_fill[pairs_.slot_j[k]]++] = static_cast<int>(k);
   }
   const long slots = static_cast<long>(n);
+  const auto before = [&](int a, int b) { return key_before(pairs_, a, b); };
 #pragma omp parallel for schedule(static, 1024)
-  for (long s = 0; s < slots; ++s)
-    std::sort(by_key_.begin() + by_key_start_[s], by_key_.begin() + by_key_start_[s + 1], [&](int a, int b) {
-      return key_before(pairs_, a >> 1, b >> 1);
-    });
+  for (long s = 0; s < slots; ++s) {
+    std::sort(by_key_.begin() + by_key_start_[s], by_key_.begin() + by_key_split_[s], before);
+    std::sort(by_key_.begin() + by_key_split_[s], by_key_.begin() + by_key_start_[s + 1], before);
+  }
   // Per block, the first block whose group holds a candidate of its particles (the group of a
   // candidate is the block of its smaller slot: this block or an earlier one).
   block_needs_.resize(blocks);
@@ -335,7 +339,7 @@ void Simulation::index_contacts_per_particle() {
   for (long b = 0; b < blocks; ++b) {
     long needs = b;
     for (long e = by_key_start_[b * block]; e < by_key_start_[std::min(slots, (b + 1) * block)]; ++e)
-      needs = std::min(needs, static_cast<long>(lower_slot(by_key_[e] >> 1)) / block);
+      needs = std::min(needs, static_cast<long>(lower_slot(by_key_[e])) / block);
     block_needs_[b] = needs;
   }
   needed_from_.resize(blocks);

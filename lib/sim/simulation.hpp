@@ -189,8 +189,9 @@ class Simulation {
   void contacts_modified();  // the views must be compacted again
   std::vector<WallGeometry> wall_geometry_;
   bool walls_move_ = false;  // some element of wall_geometry_ has a velocity or a spin
-  // Per slot, its pair candidates in key order (ForceBlocks::by_key); rebuilt with the neighbour list.
-  std::vector<int> by_key_start_, by_key_, by_key_fill_;
+  // Per slot, its pair candidates as i then as j, each in key order (ForceBlocks::by_key); rebuilt
+  // with the neighbour list.
+  std::vector<int> by_key_start_, by_key_split_, by_key_, by_key_fill_, by_key_fill_j_;
   std::vector<long> block_first_;  // first pair candidate of each load block, then the end
   std::vector<long> block_needs_;  // per load block, the first block holding a candidate of its particles
   std::vector<long> needed_from_;  // per load block, the least block_needs_ of it and those after

@@ -30,10 +30,6 @@ DEM_AVX2_INLINE Lanes4 min(Lanes4 a, Lanes4 b) { return _mm256_min_pd(a.v, b.v);
 DEM_AVX2_INLINE Lanes4 max(Lanes4 a, Lanes4 b) { return _mm256_max_pd(a.v, b.v); }
 // |a|: the sign bit cleared.
 DEM_AVX2_INLINE Lanes4 abs(Lanes4 a) { return _mm256_andnot_pd(_mm256_set1_pd(-0.0), a.v); }
-// -a where flip is 1, a where it is 0 (flip: 0 or 1, for every lane): the sign bit flipped, no branch.
-DEM_AVX2_INLINE Lanes4 flip_sign_if(unsigned flip, Lanes4 a) {
-  return _mm256_xor_pd(a.v, _mm256_castsi256_pd(_mm256_set1_epi64x(static_cast<long long>(flip) << 63)));
-}
 
 // d - L s with s = +1 where d > L/2, -1 where d < -L/2, else 0, lane by lane: PeriodicBox::nearest's
 // d - L or d + L or d, to the bit (L s is exactly +-L or 0). A lane with L = 0 and L/2 = infinity
