@@ -8,6 +8,8 @@
 //   contact_bench law-price LAWS  one contact model on a dense packing (8,000 spheres on a
 //                              periodic lattice, each pressed by six neighbours), 100 steps on one
 //                              thread: LAWS is normal[+tangential[+rolling]], e.g. hertz+mindlin+cdt.
+//   contact_bench law-price LAWS bonded  the same with every contact bonded first (F = C = 1e-2 N,
+//                              as `variants`): what liu and mendes cost with their bonds
 //                              Timing-independent under valgrind --tool=callgrind (instructions)
 // Prints markdown tables; bench/run_contact_bench.sh writes them to bench/results/contact.md.
 #include <omp.h>
@@ -186,11 +188,12 @@ ModelChoice parse_laws(const std::string& text) {
   return m;
 }
 
-void law_price(const std::string& laws) {
+void law_price(const std::string& laws, bool bonded) {
   const ModelChoice models = parse_laws(laws);
   Material m = bead(0.5);
   m.law = models.normal, m.tangential = models.tangential, m.rolling = models.rolling;
   m.young_modulus = 5e8, m.poisson_ratio = 0.3, m.rolling_friction = 0.1;
+  m.tensile_strength = m.cohesion = 1e-2;  // N: as variants(); read only by bonded contacts
   Simulation sim;
   sim.materials = MaterialTable({m}, {});
   sim.params.gravity = Vec3::Zero();
@@ -211,11 +214,12 @@ void law_price(const std::string& laws) {
   box.hi = Vec3::Constant(kSpacing * kSide);
   sim.set_periodic(box);
   sim.dt = 0.1 * sim.critical_time_step();
+  if (bonded) sim.bond_present_contacts(false);
   omp_set_num_threads(1);
   const int steps = 100;
   const auto t0 = std::chrono::steady_clock::now();
   for (int k = 0; k < steps; ++k) sim.advance();
-  std::printf("%s: force loop %s, %zu pair contacts, %.0f ns per particle-step (1 thread)\n", laws.c_str(),
+  std::printf("%s%s: force loop %s, %zu pair contacts, %.0f ns per particle-step (1 thread)\n", laws.c_str(), bonded ? " bonded" : "",
               variant_name(choose_force_variant(sim.materials, sim.has_bonds())).c_str(), active_count(sim.pair_contacts()),
               1e9 * seconds_since(t0) / (steps * sim.particles.size()));
 }
@@ -223,14 +227,14 @@ void law_price(const std::string& laws) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc == 3 && std::strcmp(argv[1], "law-price") == 0) {
-    law_price(argv[2]);
+  if ((argc == 3 || (argc == 4 && std::strcmp(argv[3], "bonded") == 0)) && std::strcmp(argv[1], "law-price") == 0) {
+    law_price(argv[2], argc == 4);
     return 0;
   }
   if (argc == 2 && std::strcmp(argv[1], "frac-sweep") == 0) frac_sweep();
   else if (argc == 2 && std::strcmp(argv[1], "variants") == 0) variants();
   else {
-    std::fprintf(stderr, "usage: contact_bench frac-sweep|variants|law-price LAWS\n");
+    std::fprintf(stderr, "usage: contact_bench frac-sweep|variants|law-price LAWS [bonded]\n");
     return 2;
   }
   return 0;

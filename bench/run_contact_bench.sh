@@ -25,7 +25,7 @@ out=bench/results/contact.md
   echo
   echo "Contacts: particle-particle plus particle-wall at the end of the run. Without bonds the liu"
   echo "law runs the cundall force loop (a scene pays only for what it uses); with bonds, liu and"
-  echo "mendes run the plain loops (the other laws, rolling included, run four contacts at a time),"
+  echo "mendes run their own (four contacts at a time, as every law, rolling included),"
   echo "whose price the last column shows; single runs differ by about 5 % on this machine (compare the first two"
   echo "rows, which do the same work). Particle-wall candidates are listed with the neighbour list"
   echo "(rebuilt only when something moved half the skin), so walls that touch nothing cost almost nothing."

@@ -2,7 +2,7 @@
 // which candidates are contacts) must decide exactly as the plain loop and as the definition
 // (|x_j - x_i| < a_i + a_j through the nearest image, or bonded; the neighbour list never pairs
 // two fixed particles), with the same separations to the bit; pass 2 (forces/pair_law_four_wide.hpp,
-// the Cundall and Hertz-Mindlin laws) must end a run with the plain loops' bits, with everything the law has: two
+// every normal law) must end a run with the plain loops' bits, with everything the law has: two
 // materials, fixed particles, periodic boundaries, sticking and sliding springs, bonds with
 // cohesion, clipped viscous attraction.
 #include <gtest/gtest.h>
@@ -286,6 +286,86 @@ TEST(SimdLoops, HertzMindlinAndRollingLawsEndARunWithThePlainLoopsBits) {
     EXPECT_TRUE(same_bits(pc.rolling, wide.pair_contacts().rolling)) << what;
     EXPECT_TRUE(same_bits(pc.dashpot, wide.pair_contacts().dashpot)) << what;
     EXPECT_TRUE(same_bits(pc.bonded, wide.pair_contacts().bonded)) << what;
+  }
+}
+
+// The bonded laws (liu, mendes with tension: epsilon = 1e-4 < 1/e, mendes without: epsilon = 0.5)
+// end a run with the plain loops' bits: law_scene's packing (grown by 22 %: chunks of enough
+// contacts for the four-wide law) made of the law, with tensile strength F = cohesion C = 0.2 N, 300
+// steps, every contact bonded (the walls' too), then the lid, bonded to the top spheres, pulled up
+// and sideways for 700 steps: the block between it and the fixed floor is stretched and sheared
+// until its bonds break. Counted in the plain run: bonds held in tension (u < 0), bonds on their
+// cohesive failure surface (|s| = C + mu f_n, to 1e-12 relative: radial return's rounding) and
+// bonds broken, each of which must occur (else the comparison would not test that branch);
+// positions, velocities, spins, springs, dashpot marks and bond flags, pair and wall contacts,
+// are compared bit for bit.
+TEST(SimdLoops, BondedLiuAndMendesLawsEndARunWithThePlainLoopsBits) {
+  if (!simd_loops_available()) GTEST_SKIP() << "no AVX2 on this processor: only the plain loops run";
+  static_assert(ContactModel<LiuNormal>::four_wide && ContactModel<MendesNormal>::four_wide);
+  struct Case {
+    NormalLaw law;
+    double epsilon;
+    const char* name;
+  };
+  for (const Case& c : {Case{NormalLaw::Liu, 1e-4, "liu"}, Case{NormalLaw::Mendes, 1e-4, "mendes, epsilon 1e-4"},
+                        Case{NormalLaw::Mendes, 0.5, "mendes, epsilon 0.5"}}) {
+    auto scene = [&]() {
+      Simulation sim = law_scene(1.22);
+      std::vector<Material> m = sim.materials.materials();
+      for (Material& x : m) x.law = c.law, x.epsilon = c.epsilon, x.tensile_strength = 0.2, x.cohesion = 0.2;
+      sim.materials = MaterialTable(m, {});
+      sim.dt = 0.1 * sim.critical_time_step();
+      return sim;
+    };
+    Simulation plain = scene(), wide = scene();
+    long tension = 0, shear = 0, broken = 0;  // in the plain run
+    for (Simulation* sim : {&plain, &wide}) {
+      set_simd_loops(sim == &wide);
+      for (int s = 0; s < 300; ++s) sim->advance();
+      EXPECT_GT(sim->bond_present_contacts(true), 50u);
+      WallMotion pull;
+      pull.velocity = Vec3(0.1, 0, 0.1);  // m/s
+      sim->walls[1].start_motion(pull, sim->time);
+      const auto bonds = [&] {
+        const ContactList& pc = sim->pair_contacts();  // a view, made when asked
+        return static_cast<long>(std::count(pc.bonded.begin(), pc.bonded.end(), 1));
+      };
+      long held = bonds();
+      for (int s = 0; s < 700; ++s) {
+        sim->advance();
+        if (sim != &plain) continue;
+        broken += held - bonds();
+        held = bonds();
+        const ContactList& pc = sim->pair_contacts();
+        const Particles& p = sim->particles;
+        for (std::size_t k = 0; k < pc.size(); ++k) {
+          if (!pc.active[k] || !pc.bonded[k]) continue;
+          const int i = pc.slot_i[k], j = pc.slot_j[k];
+          const PairParams& q = sim->materials.pair(p.material[i], p.material[j]);
+          tension += p.radius[i] + p.radius[j] < sim->periodic.nearest(p.x[j] - p.x[i]).norm();
+          const double tau = q.cohesion + q.mu * -pc.sum[k].force.dot(pc.normal[k]);
+          shear += tau > 0 && std::abs(pc.spring[k].norm() - tau) <= 1e-12 * tau;
+        }
+      }
+    }
+    set_simd_loops(true);
+    const ContactList& pc = plain.pair_contacts();
+    std::printf("  %s: %ld bond-steps in tension, %ld on the cohesive surface, %ld bonds broken, %ld left\n", c.name, tension, shear,
+                broken, static_cast<long>(std::count(pc.bonded.begin(), pc.bonded.end(), 1)));
+    EXPECT_GT(tension, 100) << c.name << ": the run must hold bonds in tension";
+    EXPECT_GT(shear, 10) << c.name << ": the run must take bonds onto their cohesive failure surface";
+    EXPECT_GT(broken, 50) << c.name << ": the run must break bonds";
+    EXPECT_TRUE(same_bits(plain.particles.x, wide.particles.x)) << c.name;
+    EXPECT_TRUE(same_bits(plain.particles.v, wide.particles.v)) << c.name;
+    EXPECT_TRUE(same_bits(plain.particles.w, wide.particles.w)) << c.name;
+    for (const bool walls : {false, true}) {
+      const ContactList& a = walls ? plain.wall_contacts() : pc;
+      const ContactList& b = walls ? wide.wall_contacts() : wide.pair_contacts();
+      const std::string what = std::string(c.name) + (walls ? ", wall contacts" : ", pair contacts");
+      EXPECT_TRUE(same_bits(a.spring, b.spring)) << what;
+      EXPECT_TRUE(same_bits(a.dashpot, b.dashpot)) << what;
+      EXPECT_TRUE(same_bits(a.bonded, b.bonded)) << what;
+    }
   }
 }
 

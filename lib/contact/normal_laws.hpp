@@ -12,8 +12,9 @@
 // Each law lists the scene keys it reads (`keys`, contact/properties.hpp) and derives its
 // constants from them (`derive`).
 //
-// A law written over a lane type (simd/lanes.hpp) also runs four contacts at a time (four_wide:
-// CundallNormal, HertzNormal); the others one at a time (L = double, P = PairParams).
+// Each law is written over a lane type (simd/lanes.hpp), selections in place of branches: one
+// source runs one contact at a time (L = double, P = PairParams) and four (four_wide; the per-pair
+// choice of a mixed scene, MixedNormal in model_table.hpp, runs one at a time).
 //
 // How to add a law: a struct here with the members below, its entry in model_table.hpp (one
 // enum value in contact/pair_params.hpp, one case), its tests, and its keyword in docs/scene.md.
@@ -52,9 +53,13 @@ inline constexpr double kBondTouchTolerance = 1e-6;
 // SPEC §6 Decision (separation), for the laws without tension (cundall, hertz, mendes with
 // epsilon >= 1/e): the bond breaks where the particles are apart by more than
 // kBondTouchTolerance 2R*. Written over lanes: the four-wide cundall code runs it too.
+template <class L>
+[[gnu::always_inline]] inline auto separated(const L& u, const L& r_eff) {
+  return lanes::less(u, -(L(2 * kBondTouchTolerance) * r_eff));
+}
 template <class L, class M>
 [[gnu::always_inline]] inline void break_when_apart(const L& u, const L& r_eff, M& bonded) {
-  bonded = lanes::but_not(bonded, lanes::less(u, -(L(2 * kBondTouchTolerance) * r_eff)));
+  bonded = lanes::but_not(bonded, separated(u, r_eff));
 }
 
 // The energy bound of the linear compression every law shares: ½ kn u² [J].
@@ -89,16 +94,15 @@ struct CundallNormal {
 struct LiuNormal {
   using Damping = ViscousDamping;
   static constexpr std::string_view keyword = "liu";
-  static constexpr bool four_wide = false;
+  static constexpr bool four_wide = true;
   using WithoutBonds = CundallNormal;  // its tension needs a bond
-  static double elastic(const PairParams& p, double u, double /*r_eff*/, bool& bonded) {
-    if (u >= 0) return p.kn * u;
-    if (!bonded) return 0.0;
-    if (-p.kn * u > p.tensile_strength) {
-      bonded = false;
-      return 0.0;
-    }
-    return p.kn * u;
+  template <class P, class L, class M>
+  [[gnu::always_inline]] static L elastic(const P& p, const L& u, const L& /*r_eff*/, M& bonded) {
+    using namespace lanes;
+    const M compressed = less_or_equal(L(0.0), u);
+    const L f = p.kn * u;
+    bonded = but_not(bonded, but_not(less(p.tensile_strength, -f), compressed));  // tension beyond F breaks the bond (docs/physics.md P11)
+    return only_where(either(compressed, bonded), f);
   }
   // A bonded pair held in tension s stores at most F s (the attraction never exceeds F).
   static double stored_energy(const PairParams& p, double u, double /*r_eff*/, bool bonded) {
@@ -126,21 +130,20 @@ struct LiuNormal {
 struct MendesNormal {
   using Damping = ViscousDamping;
   static constexpr std::string_view keyword = "mendes";
-  static constexpr bool four_wide = false;
+  static constexpr bool four_wide = true;
   using WithoutBonds = CundallNormal;  // its tension needs a bond
-  static double elastic(const PairParams& p, double u, double r_eff, bool& bonded) {
-    if (u >= 0) return p.kn * u;
-    if (!bonded) return 0.0;
-    const double s = -u;
-    if (!p.mendes_tension) {
-      break_when_apart(u, r_eff, bonded);  // s0 = 0
-      return 0.0;
-    }
-    if (s >= p.break_separation) {
-      bonded = false;
-      return 0.0;
-    }
-    return -p.kn * (p.mendes_D * (1 - std::exp(-p.mendes_A * s)) - s);
+  template <class P, class L, class M>
+  [[gnu::always_inline]] static L elastic(const P& p, const L& u, const L& r_eff, M& bonded) {
+    using namespace lanes;
+    const M compressed = less_or_equal(L(0.0), u);
+    const L s = -u;
+    // A bond in tension breaks at s >= s0 (docs/physics.md P13); without tension (s0 = 0), once apart.
+    const M breaks = either(both(p.mendes_tension, less_or_equal(p.break_separation, s)), but_not(separated(u, r_eff), p.mendes_tension));
+    bonded = but_not(bonded, but_not(breaks, compressed));
+    const M pulls = both(but_not(bonded, compressed), p.mendes_tension);
+    // -T(s) of docs/physics.md P12; its exp() only on the lanes that pull, one by one with std::exp (the plain bits).
+    const L tension = (-p.kn) * (p.mendes_D * (L(1.0) - exp_where(pulls, (-p.mendes_A) * s)) - s);
+    return select(compressed, p.kn * u, only_where(pulls, tension));
   }
   static double stored_energy(const PairParams& p, double u, double r_eff, bool bonded) { return LiuNormal::stored_energy(p, u, r_eff, bonded); }
   // Exactly (docs/physics.md eq. P31): in tension s < s0 the work of T, kn [D (s - (1 - exp(-A s))/A) - s²/2].

@@ -5,7 +5,7 @@
 // couple where the model has one.
 //
 // The plain version is three loops in force_loop.cpp (any model); a model whose sub-models are all
-// written over lanes (ContactModel::four_wide: cundall and hertz, with either tangential law and
+// written over lanes (ContactModel::four_wide: every normal law, with either tangential law and
 // any rolling law; contact/contact_law.hpp, simd/lanes.hpp) also runs four contacts at a time with
 // AVX2 here: the same source, so the same bits. A template here, instantiated by force_loop.cpp
 // for the models it compiles (so that the two lists cannot disagree).
@@ -77,20 +77,26 @@ DEM_AVX2_INLINE V3 load_four(const Vec3* base, const int (&slot)[4]) { return si
 DEM_AVX2_INLINE Lanes4 param(const PairParams* const (&pp)[4], double PairParams::*field) {
   return lanes::lanes4(pp[0]->*field, pp[1]->*field, pp[2]->*field, pp[3]->*field);
 }
+// One flag of four lanes' pair parameters.
+DEM_AVX2_INLINE Mask4 flag(const PairParams* const (&pp)[4], bool PairParams::*field) {
+  return lanes::mask4(pp[0]->*field, pp[1]->*field, pp[2]->*field, pp[3]->*field);
+}
 // What the laws read of four lanes' pair parameters, by PairParams' names (contact/contact_law.hpp);
 // a model's loop reads only its own (the rest are never loaded).
 struct LawParams {
   Lanes4 kn, kt, mu, damping_n, damping_t, cohesion;
+  Lanes4 tensile_strength, mendes_D, mendes_A, break_separation;
   Lanes4 hertz_modulus, hertz_damping, mindlin_modulus, mindlin_damping, rolling_friction;
-  Mask4 no_viscous_attraction;
+  Mask4 no_viscous_attraction, mendes_tension;
   DEM_AVX2_INLINE explicit LawParams(const PairParams* const (&pp)[4])
       : kn(param(pp, &PairParams::kn)), kt(param(pp, &PairParams::kt)), mu(param(pp, &PairParams::mu)),
         damping_n(param(pp, &PairParams::damping_n)), damping_t(param(pp, &PairParams::damping_t)),
-        cohesion(param(pp, &PairParams::cohesion)), hertz_modulus(param(pp, &PairParams::hertz_modulus)),
+        cohesion(param(pp, &PairParams::cohesion)), tensile_strength(param(pp, &PairParams::tensile_strength)),
+        mendes_D(param(pp, &PairParams::mendes_D)), mendes_A(param(pp, &PairParams::mendes_A)),
+        break_separation(param(pp, &PairParams::break_separation)), hertz_modulus(param(pp, &PairParams::hertz_modulus)),
         hertz_damping(param(pp, &PairParams::hertz_damping)), mindlin_modulus(param(pp, &PairParams::mindlin_modulus)),
         mindlin_damping(param(pp, &PairParams::mindlin_damping)), rolling_friction(param(pp, &PairParams::rolling_friction)),
-        no_viscous_attraction(lanes::mask4(pp[0]->no_viscous_attraction, pp[1]->no_viscous_attraction,
-                                           pp[2]->no_viscous_attraction, pp[3]->no_viscous_attraction)) {}
+        no_viscous_attraction(flag(pp, &PairParams::no_viscous_attraction)), mendes_tension(flag(pp, &PairParams::mendes_tension)) {}
 };
 // What the first `count` of four contacts (k) leave: keep_pair_result's, the dashpot's mark and,
 // with Couples, the rolling couple, lane by lane; each vector written with one masked store of its

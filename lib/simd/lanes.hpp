@@ -26,6 +26,7 @@ inline double select(bool where, double a, double b) { return where ? a : b; }
 inline double only_where(bool where, double a) { return where ? a : 0.0; }  // where ? a : +0
 inline double zero_where(bool where, double a) { return where ? 0.0 : a; }  // where ? +0 : a
 inline double root(double a) { return std::sqrt(a); }
+inline double exp_where(bool where, double a) { return where ? std::exp(a) : 0.0; }  // where ? exp(a) : +0
 inline bool all(bool where) { return where; }
 
 // A vector of three lanes each: x, y and z of one contact, or of four.
@@ -88,6 +89,14 @@ DEM_LANE Lanes4 only_where(Mask4 where, Lanes4 a) { return (f64x4)((i64x4)a.v & 
 DEM_LANE Lanes4 zero_where(Mask4 where, Lanes4 a) { return (f64x4)((i64x4)a.v & ~where.v); }
 DEM_LANE Lanes4 root(Lanes4 a) {
   return f64x4{__builtin_sqrt(a.v[0]), __builtin_sqrt(a.v[1]), __builtin_sqrt(a.v[2]), __builtin_sqrt(a.v[3])};
+}
+// std::exp lane by lane where asked (libm's bits, as one lane's; a vector exp rounds otherwise),
+// for lanes that are few (a mendes bond in tension): the others cost a test each.
+DEM_LANE Lanes4 exp_where(Mask4 where, Lanes4 a) {
+  f64x4 e{};
+  for (int l = 0; l < 4; ++l)
+    if (where.v[l]) e[l] = std::exp(a.v[l]);
+  return e;
 }
 DEM_LANE bool all(Mask4 where) { return (where.v[0] & where.v[1] & where.v[2] & where.v[3]) != 0; }
 // A mask from four flags, and four values.
