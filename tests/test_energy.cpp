@@ -219,10 +219,10 @@ TEST(Energy, LedgerHasTheSameBitsOnOneAndTwoThreads) {
   EXPECT_EQ(values[0], values[1]);
 }
 
-// The pair contacts' work is summed per particle in the force loop, in the order of the contacts'
-// keys (forces/force_loop.hpp, LedgerWork): the same bits whatever the storage order. The bonded
+// The pair contacts' forces for the ledger come from the force loop (forces/force_loop.hpp,
+// ContactWork), each thread its own blocks: the same bits whatever the storage order. The bonded
 // blocks on the turning floor, stored as built on one thread, and stored in the opposite order,
-// re-sorted every 7 steps, in blocks of 16 slots on two threads (sums in storage order would differ).
+// re-sorted every 7 steps, in blocks of 16 slots on two threads.
 TEST(Energy, LedgerHasTheSameBitsForAnyStorageOrder) {
   const int threads_before = omp_get_max_threads();
   std::vector<double> values[2];

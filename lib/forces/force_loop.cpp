@@ -43,13 +43,12 @@ struct ChunkInput {
 };
 
 // While the energy log is on: each contact of the chunk's ContactWork, from its separation at x^n
-// (as pass 2 takes it) and the force its law just left; the chunk's other candidates get zeros.
-// f_el is the law's elastic force at u^n with the bond as the law left it (eq. P33).
+// (as pass 2 takes it) and the force its law just left. f_el is the law's elastic force at u^n with
+// the bond as the law left it (eq. P33).
 template <class Normal>
-void record_contact_work(const ChunkInput& chunk, const FoundInChunk& found, long first, long last, int m) {
+void record_contact_work(const ChunkInput& chunk, const FoundInChunk& found, int m) {
   const PairLawArrays& a = chunk.law;
-  ContactWork* const work = chunk.in.work.contacts;
-  std::fill(work + first, work + last, ContactWork{});
+  ContactWork* const work = chunk.in.work;
   for (int e = 0; e < m; ++e) {
     const long k = found.contact[e];
     const int i = a.slot_i[k], j = a.slot_j[k];
@@ -84,7 +83,7 @@ double pair_chunk(const ChunkInput& chunk, long first, long last) {
   if constexpr (Model::four_wide)
     if (chunk.simd && m >= kMinSimdLaw) {
       const double worst = pair_law_four_wide<Model, Fixed>(a, materials, dt, found, m, chunk.in.any_bonds);
-      if (chunk.in.work.contacts) record_contact_work<typename Model::NormalModel>(chunk, found, first, last, m);
+      if (chunk.in.work) record_contact_work<typename Model::NormalModel>(chunk, found, m);
       return worst;
     }
   // Pass 2, in three loops over the chunk's contacts: their kinematics, their springs turned into
@@ -122,7 +121,7 @@ double pair_chunk(const ChunkInput& chunk, long first, long last) {
     if constexpr (Model::has_rolling) a.rolling[k] = f.couple;  // summed with the loads (finish_block)
     worst = std::max(worst, relative_overlap_if_larger(c.overlap, std::min(a.radius[i], a.radius[j]), worst));
   }
-  if (chunk.in.work.contacts) record_contact_work<typename Model::NormalModel>(chunk, found, first, last, m);
+  if (chunk.in.work) record_contact_work<typename Model::NormalModel>(chunk, found, m);
   return worst;
 }
 
@@ -281,27 +280,6 @@ void sum_pair_contacts(const ForceBlocks& out, const ContactSum* sum, const Vec3
   sum_pair_contacts_plain<Couples>(out, sum, couple, radius, lo, hi);
 }
 
-// While the energy log is on: the ParticleWork of particles [lo, hi), each one's pair contacts in
-// the order of their keys, as sum_pair_contacts sums its loads (so the same bits for any storage
-// order and thread count); ± as the force, the couple (with Couples) as in eq. R1.
-template <bool Couples>
-void sum_contact_work(const ForceBlocks& out, const ContactSum* sum, const Vec3* couple, const double* radius, const ContactWork* work,
-                      ParticleWork* to, long lo, long hi) {
-  for (long i = lo; i < hi; ++i) {
-    ParticleWork p{Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()};
-    for (int e = out.by_key_start[i]; e < out.by_key_start[i + 1]; ++e) {
-      const unsigned code = static_cast<unsigned>(out.by_key[e]);
-      const ContactWork& c = work[code >> 1];
-      const double sign = (code & 1) ? -1.0 : 1.0;  // exact: j takes the opposite
-      p.damping += sign * c.damping;
-      p.tangential += sign * c.tangential;
-      p.arm_torque += radius[i] * sum[code >> 1].torque_per_radius;
-      if constexpr (Couples) p.couple += sign * couple[code >> 1];
-    }
-    to[i] = p;
-  }
-}
-
 // The net loads of block b's particles (ForceBlocks): each one's pair contacts in key order, then
 // its wall contacts, then the body forces. Called once every block holding a pair contact of
 // theirs has been computed.
@@ -311,8 +289,6 @@ double finish_block(const ForceLoopInput& in, const ContactList& pc, ContactList
   const Particles& p = in.particles;
   const long lo = b * out.block, hi = std::min(static_cast<long>(p.size()), lo + out.block);
   sum_pair_contacts<Model::has_rolling>(out, pc.sum.data(), pc.rolling.data(), p.radius.data(), lo, hi);
-  if (in.work.particles)
-    sum_contact_work<Model::has_rolling>(out, pc.sum.data(), pc.rolling.data(), p.radius.data(), in.work.contacts, in.work.particles, lo, hi);
   double worst = 0;
   for (int q = in.wall_block_first[b]; q < in.wall_block_first[b + 1]; ++q)
     worst = std::max(worst, wall_run<Model>(in, wc, out, in.wall_run_order[q], scratch));

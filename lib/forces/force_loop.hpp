@@ -20,21 +20,11 @@ namespace dem {
 class Simulation;
 
 // While the energy log is on (sim/energy_ledger.hpp): what the force loop leaves for the ledger's
-// work of the pair contacts (docs/physics.md eq. P33-P34, P41). Each work is linear in the mean
-// velocities, Σ_c A_c · (v̄_i − v̄_j) = Σ_i v̄_i · Σ_{c at i} ±A_c, so the pass after the motion
-// takes it particle by particle from these sums, not contact by contact.
-struct ContactWork {  // per pair candidate, on i (on j the opposite); zeros where no contact
-  Vec3 damping = Vec3::Zero();     // the normal force beyond the elastic one, f_d n (eq. P33)
-  Vec3 tangential = Vec3::Zero();  // the tangential force f − (f·n) n (eq. P34)
-};
-struct ParticleWork {  // per slot: over its pair contacts, in the order of their keys (ForceBlocks)
-  Vec3 damping, tangential;  // Σ ±ContactWork
-  Vec3 arm_torque;           // Σ a_i (n × f_t), the tangential forces' torque (eq. P34)
-  Vec3 couple;               // Σ ±M, the rolling couples (eq. P41); zero without rolling
-};
-struct LedgerWork {  // both null: the log is off, the force loop leaves nothing
-  ContactWork* contacts = nullptr;    // per pair candidate
-  ParticleWork* particles = nullptr;  // per slot
+// work of a pair contact (docs/physics.md eq. P33-P34), so that the pass after the motion need not
+// take its geometry and law again: only the velocities of the step are left to it.
+struct ContactWork {  // per pair candidate, on i (on j the opposite); written where a contact only
+  Vec3 damping;     // the normal force beyond the elastic one, f_d n (eq. P33)
+  Vec3 tangential;  // the tangential force f − (f·n) n (eq. P34)
 };
 
 // What the force loop reads.
@@ -51,7 +41,7 @@ struct ForceLoopInput {
   bool any_bonds;  // some contact is bonded (Simulation::has_bonds)
   double dt;
   bool keep_pair_results;  // SimParams::keep_pair_results
-  LedgerWork work = {};    // written where the energy log is on
+  ContactWork* work = nullptr;  // per pair candidate: written where the energy log is on
 };
 
 // Each particle's net load, summed in the force loop in one order that depends on neither the

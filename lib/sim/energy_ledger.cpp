@@ -132,7 +132,7 @@ void account_held(const PairParams& q, const Vec3& spring, const Vec3& n, double
 // A wall contact's work with the mean velocities (force `f` on i, n x f_t `tpr`): its dashpot's,
 // f_d u̇ (eq. P33), and the rest of its power, f · (v̄_i - v_wall) + (n x f_t) · a_i w̄_i less the
 // normal part (eq. P34). `dv_mean` = v̄_i - v_wall at the contact point, `arm_w` = a_i w̄_i. (A
-// pair contact's: the force loop's ContactWork, taken particle by particle.)
+// pair contact's from the forces the force loop left, ContactWork.)
 template <class Normal>
 [[gnu::always_inline]] inline void account_wall_work(const PairParams& q, const Vec3& f, const Vec3& tpr, const Vec3& n, double u,
                                                      double r_eff, bool bonded, const Vec3& dv_mean, const Vec3& arm_w, double dt,
@@ -173,8 +173,9 @@ void Simulation::account_energy(bool any_fixed) {
   // work of the step is added every step.
   const bool measure = ledger.measure_now || !ledger.have_reference;
   const bool global_damping = params.alpha_r != 0 || params.alpha_theta != 0;
-  const ParticleWork* contact_work = ledger_particle_work_.data();  // the force loop's (LedgerWork)
-  const bool rolling = !force_variant_ || force_variant_->rolling != RollingLaw::None;
+  // Whether a particle's own terms do work this step: otherwise only a measuring step visits them.
+  const bool particles_work = has_fluid || global_damping || any_fixed;
+  const bool rolling = !force_variant_ || force_variant_->rolling != RollingLaw::None;  // else no couples
   auto account_particle = [&](std::size_t k, StepSums& s) {
     const double I = p.inertia(k);
     if (measure) {
@@ -184,12 +185,6 @@ void Simulation::account_energy(bool any_fixed) {
       s.potential.add(-p.mass[k] * params.gravity.dot(unwrapped_position(k) - 0.5 * dt * p.v[k]));
     }
     const Vec3 v = v_mean(k), w = w_mean(k);
-    // eq. P33, P34, P41: the work of its pair contacts' forces and couples, summed over them in the
-    // force loop (Σ_c A_c · (v̄_i − v̄_j) = Σ_i v̄_i · Σ_{c at i} ±A_c).
-    const ParticleWork& c = contact_work[k];
-    s.c.damping.add(c.damping.dot(v) * dt);
-    s.c.tangential_work.add((c.tangential.dot(v) + c.arm_torque.dot(w)) * dt);
-    if (rolling) s.c.rolling_work.add(c.couple.dot(w) * dt);
     // eq. P40: the fluid's force as the force loop took it (x^n, v^{n-1/2}), times the mean velocity.
     if (has_fluid) s.fluid.add(params.fluid.force(p.radius[k], p.void_fraction[k], x0[k], v0[k], params.gravity).dot(v) * dt);
     const std::uint8_t fixed = any_fixed ? p.fixed[k] : 0;
@@ -201,12 +196,22 @@ void Simulation::account_energy(bool any_fixed) {
     }
   };
   const bool breaks = !ledger_pair_bonded_.empty() || !ledger_wall_bonded_.empty();
-  // A pair contact's work is the force loop's (account_particle); only what it holds, where measured,
-  // and the energy of a bond broken this step are taken here.
+  const ContactWork* contact_work = ledger_contact_work_.data();  // the force loop's, per contact
   auto account_pair = [&](auto normal, std::size_t k, ContactTerms& t) {
     const bool broke = breaks && k < ledger_pair_bonded_.size() && ledger_pair_bonded_[k] && !pairs_.bonded[k];
-    if (!broke && !(measure && pairs_.active[k])) return;
+    if (!pairs_.active[k] && !broke) return;
     const int i = pairs_.slot_i[k], j = pairs_.slot_j[k];
+    if (pairs_.active[k]) {
+      // eq. P33-P34, P41: the forces the force loop left (ContactWork) with the mean velocities,
+      // f_d n · (v̄_i - v̄_j) = f_d u̇, and the rest of the contact's power, the couple's on its own.
+      const ContactWork& c = contact_work[k];
+      const Vec3 dv = v_mean(i) - v_mean(j);
+      t.damping.add(c.damping.dot(dv) * dt);
+      t.tangential_work.add((c.tangential.dot(dv) + pairs_.sum[k].torque_per_radius.dot(p.radius[i] * w_mean(i) + p.radius[j] * w_mean(j))) * dt);
+      if (rolling) t.rolling_work.add(pairs_.rolling[k].dot(w_mean(i) - w_mean(j)) * dt);
+    }
+    if (!broke && !measure) [[likely]]
+      return;
     const Vec3 d = periodic.any() ? separation<true>(periodic, x0[i], x0[j]) : separation<false>(periodic, x0[i], x0[j]);
     const double dist = d.norm();
     const Vec3 n = d / dist;
@@ -246,13 +251,14 @@ void Simulation::account_energy(bool any_fixed) {
   // Each thread its own sums over fixed ranges of the particles and contacts (a term out of range
   // is kept, not thrown, and reported by value() after the region).
   StepSums sums;
-  const long pair_count = measure || breaks ? static_cast<long>(pairs_.size()) : 0, wall_count = static_cast<long>(walls_.size());
+  const long pair_count = static_cast<long>(pairs_.size()), wall_count = static_cast<long>(walls_.size());
+  const long particle_count = measure || particles_work ? count : 0;
   auto account_all = [&](auto normal) {
 #pragma omp parallel
     {
       StepSums mine;
 #pragma omp for schedule(static) nowait
-      for (long k = 0; k < count; ++k) account_particle(k, mine);
+      for (long k = 0; k < particle_count; ++k) account_particle(k, mine);
 #pragma omp for schedule(static) nowait
       for (long k = 0; k < pair_count; ++k) account_pair(normal, k, mine.c);
 #pragma omp for schedule(static) nowait

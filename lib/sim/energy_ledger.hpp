@@ -1,11 +1,11 @@
 #pragma once
 // The energy balance of a run (docs/physics.md eq. P29-P45), kept only when asked (run-stage's
-// energy log): each step, after the motion, a pass over the particles (and the wall contacts) adds
-// what the step dissipated, released and put in, and, at the steps whose figures are read
-// (measure_now), measures what the particles and contacts hold. The pair contacts' work comes from
-// the force loop, which, while the log is on, leaves each contact's dashpot and tangential forces
-// summed per particle (forces/force_loop.hpp, LedgerWork): a run that does not ask pays one test
-// per step and one per chunk and per block of the force loop.
+// energy log): each step, after the motion, a pass over the particles and contacts adds what the
+// step dissipated, released and put in, and, at the steps whose figures are read (measure_now),
+// measures what the particles and contacts hold. For the pair contacts' work the force loop leaves
+// each contact's dashpot and tangential forces (forces/force_loop.hpp, ContactWork), so that the
+// pass takes only the velocities: a run that does not ask pays one test per step and one per
+// chunk of the force loop.
 //
 // The scheme follows the integrator (leapfrog): the force at step n acts on the velocity between
 // the half steps n-1/2 and n+1/2, so the kinetic energy changes by exactly F · (v^{n-1/2} +
@@ -14,9 +14,8 @@
 // and each contact's elastic energy at the half step too (eq. P31): the balance is then exact but
 // for the elastic energy of non-linear laws and the breaking of bonds, both O(Δt²).
 //
-// Every sum over particles and contacts is exact in fixed point (FixedSum), and each particle's sums
-// over its contacts are taken in the order of their keys (as its loads), so the figures have the
-// same bits whatever the storage order of particles and contacts and the thread count.
+// Every sum is exact in fixed point (FixedSum), so the figures have the same bits whatever the
+// storage order of particles and contacts and the thread count.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>

@@ -213,9 +213,7 @@ class Simulation {
   std::vector<Vec3> ledger_x_, ledger_v_, ledger_w_;
   std::vector<std::uint8_t> ledger_pair_bonded_, ledger_wall_bonded_;
   std::vector<std::uint8_t> ledger_fibre_broken_;  // the fibre segments broken before the force loop
-  // While ledger.on: the force loop's pair contact work of the step (forces/force_loop.hpp's LedgerWork).
-  std::vector<ContactWork> ledger_contact_work_;
-  std::vector<ParticleWork> ledger_particle_work_;
+  std::vector<ContactWork> ledger_contact_work_;  // while ledger.on: the force loop's, per pair candidate
   std::optional<ModelChoice> force_variant_;  // the force loop's this step (force_loop.hpp's ForceVariant)
 };
 
