@@ -117,8 +117,9 @@ TEST(Energy, ABrokenBondReleasesTheEnergyItHeldWhenItBroke) {
 
 // --- Bonded blocks colliding: the balance closes at every step. -------------------------------
 // Two cubes of 5 x 5 x 5 bonded spheres (liu law, friction, dashpot) meet head on at 1 m/s; with
-// a bond strength that lets the impact break bonds, and with unbreakable bonds.
-Simulation bonded_blocks(double strength) {
+// a bond strength that lets the impact break bonds, and with unbreakable bonds. `reversed`: the
+// spheres stored in the opposite order.
+Simulation bonded_blocks(double strength, bool reversed = false) {
   Simulation sim;
   Material m;
   m.name = "rock";
@@ -143,6 +144,11 @@ Simulation bonded_blocks(double strength) {
                             m.density, 0);
           sim.particles.v.back() = Vec3(block == 0 ? 0.5 : -0.5, 0, 0);
         }
+  if (reversed) {
+    std::vector<std::size_t> order(sim.particles.size());
+    for (std::size_t k = 0; k < order.size(); ++k) order[k] = order.size() - 1 - k;
+    sim.particles.reorder(order);
+  }
   sim.bond_present_contacts(false, 1e-6);  // gaps of round-off count as touching
   sim.dt = 0.2 * sim.critical_time_step();
   return sim;
@@ -182,6 +188,17 @@ TEST(Energy, BalanceOfBondedBlocksCollidingClosesWithinOnePercentAtEveryStep) {
   }
 }
 
+// A floor under the blocks' lowest row turning about y at 2 rad/s: its contacts take the wall loop
+// and put in work.
+void add_turning_floor(Simulation& sim) {
+  const double a = 1e-3;  // the blocks' radius
+  sim.walls.push_back(Wall{"floor", 0, {Vec3(-0.1, -0.1, -a), Vec3(0.1, -0.1, -a), Vec3(0.1, 0.1, -a), Vec3(-0.1, 0.1, -a)}, {}});
+  WallMotion turn;
+  turn.axis = Vec3::UnitY();
+  turn.angular_speed = 2;
+  sim.walls[0].start_motion(turn, 0);
+}
+
 // The ledger's pass is split over the threads (fixed ranges of particles, pairs and wall contacts,
 // each thread its own sums): the bonded blocks, bonds breaking, collide on a floor turning about y,
 // whose contacts take the wall loop and put in work. Exact equality: the sums are integers.
@@ -191,12 +208,7 @@ TEST(Energy, LedgerHasTheSameBitsOnOneAndTwoThreads) {
     omp_set_num_threads(t);
     Simulation sim = bonded_blocks(0.05);
     const std::size_t bonds0 = intact_bonds(sim);
-    const double a = 1e-3;  // the blocks' radius: the floor touches their lowest row
-    sim.walls.push_back(Wall{"floor", 0, {Vec3(-0.1, -0.1, -a), Vec3(0.1, -0.1, -a), Vec3(0.1, 0.1, -a), Vec3(-0.1, 0.1, -a)}, {}});
-    WallMotion turn;
-    turn.axis = Vec3::UnitY();
-    turn.angular_speed = 2;
-    sim.walls[0].start_motion(turn, 0);
+    add_turning_floor(sim);
     double worst = 0;
     run_checking_balance(sim, 1000, worst);  // the blocks meet and break bonds by then
     EXPECT_LT(intact_bonds(sim), bonds0) << "bonds break";
@@ -204,6 +216,27 @@ TEST(Energy, LedgerHasTheSameBitsOnOneAndTwoThreads) {
     values[t - 1] = sim.ledger.values();
   }
   omp_set_num_threads(omp_get_num_procs());
+  EXPECT_EQ(values[0], values[1]);
+}
+
+// The pair contacts' forces for the ledger come from the force loop (forces/force_loop.hpp,
+// ContactWork), each thread its own blocks: the same bits whatever the storage order. The bonded
+// blocks on the turning floor, stored as built on one thread, and stored in the opposite order,
+// re-sorted every 7 steps, in blocks of 16 slots on two threads.
+TEST(Energy, LedgerHasTheSameBitsForAnyStorageOrder) {
+  const int threads_before = omp_get_max_threads();
+  std::vector<double> values[2];
+  for (const bool reordered : {false, true}) {
+    omp_set_num_threads(reordered ? 2 : 1);
+    Simulation sim = bonded_blocks(0.05, reordered);
+    if (reordered) sim.params.sort_every = 7, sim.params.sort_min_particles = 0, sim.params.load_block = 16;
+    add_turning_floor(sim);
+    sim.ledger.on = true;
+    for (int n = 0; n < 1000; ++n) sim.advance();
+    EXPECT_GT(sim.ledger.totals.released, 0.0) << "bonds break";
+    values[reordered] = sim.ledger.values();
+  }
+  omp_set_num_threads(threads_before);
   EXPECT_EQ(values[0], values[1]);
 }
 
@@ -218,12 +251,7 @@ TEST(Energy, MeasuringOnlyAtTheRowsGivesTheFiguresOfMeasuringEveryStep) {
     for (int every : {1, 50}) {
       Simulation sim = bonded_blocks(0.05);
       sim.params.alpha_r = sim.params.alpha_theta = alpha;
-      const double a = 1e-3;
-      sim.walls.push_back(Wall{"floor", 0, {Vec3(-0.1, -0.1, -a), Vec3(0.1, -0.1, -a), Vec3(0.1, 0.1, -a), Vec3(-0.1, 0.1, -a)}, {}});
-      WallMotion turn;
-      turn.axis = Vec3::UnitY();
-      turn.angular_speed = 2;
-      sim.walls[0].start_motion(turn, 0);
+      add_turning_floor(sim);
       sim.ledger.on = true;
       for (int n = 1; n <= 1000; ++n) {
         sim.ledger.measure_now = n % every == 0;

@@ -42,6 +42,29 @@ struct ChunkInput {
   bool simd;  // simd_loops_on()
 };
 
+// While the energy log is on: each contact of the chunk's ContactWork, from its separation at x^n
+// (as pass 2 takes it) and the force its law just left. f_el is the law's elastic force at u^n with
+// the bond as the law left it (eq. P33).
+template <class Normal>
+void record_contact_work(const ChunkInput& chunk, const FoundInChunk& found, int m) {
+  const PairLawArrays& a = chunk.law;
+  ContactWork* const work = chunk.in.work;
+  for (int e = 0; e < m; ++e) {
+    const long k = found.contact[e];
+    const int i = a.slot_i[k], j = a.slot_j[k];
+    const Vec3 d(found.dx[e], found.dy[e], found.dz[e]);
+    const double dist = d.norm();
+    const Vec3 n = d * (1.0 / dist);
+    const double r_eff = a.radius[i] * a.radius[j] / (a.radius[i] + a.radius[j]);
+    bool bonded = a.bonded[k] != 0;
+    const double f_el =
+        Normal::elastic(chunk.in.materials.pair(a.material[i], a.material[j]), a.radius[i] + a.radius[j] - dist, r_eff, bonded);
+    const Vec3& f = a.sum[k].force;
+    const double f_normal = f.dot(n);  // < 0 repulsive
+    work[k] = {(-f_normal - f_el) * n, f - f_normal * n};
+  }
+}
+
 // The candidates [first, last) of one block. Periodic: distances to the nearest image; Fixed: some
 // particles are fixed in place. Both are template parameters so that a scene without them pays
 // nothing.
@@ -58,7 +81,11 @@ double pair_chunk(const ChunkInput& chunk, long first, long last) {
   const int m = find_contacts<Periodic>(chunk.candidates, box, first, last, found, chunk.simd);
   // Pass 2 (pair_law_four_wide.hpp): the law on them, four at a time where the model allows.
   if constexpr (Model::four_wide)
-    if (chunk.simd && m >= kMinSimdLaw) return pair_law_four_wide<Model, Fixed>(a, materials, dt, found, m, chunk.in.any_bonds);
+    if (chunk.simd && m >= kMinSimdLaw) {
+      const double worst = pair_law_four_wide<Model, Fixed>(a, materials, dt, found, m, chunk.in.any_bonds);
+      if (chunk.in.work) record_contact_work<typename Model::NormalModel>(chunk, found, m);
+      return worst;
+    }
   // Pass 2, in three loops over the chunk's contacts: their kinematics, their springs turned into
   // the tangent plane, the law. Each loop is short and its contacts independent, so the processor
   // overlaps the divisions and square roots of several contacts; in one long loop each contact
@@ -94,6 +121,7 @@ double pair_chunk(const ChunkInput& chunk, long first, long last) {
     if constexpr (Model::has_rolling) a.rolling[k] = f.couple;  // summed with the loads (finish_block)
     worst = std::max(worst, relative_overlap_if_larger(c.overlap, std::min(a.radius[i], a.radius[j]), worst));
   }
+  if (chunk.in.work) record_contact_work<typename Model::NormalModel>(chunk, found, m);
   return worst;
 }
 

@@ -19,6 +19,14 @@ namespace dem {
 
 class Simulation;
 
+// While the energy log is on (sim/energy_ledger.hpp): what the force loop leaves for the ledger's
+// work of a pair contact (docs/physics.md eq. P33-P34), so that the pass after the motion need not
+// take its geometry and law again: only the velocities of the step are left to it.
+struct ContactWork {  // per pair candidate, on i (on j the opposite); written where a contact only
+  Vec3 damping;     // the normal force beyond the elastic one, f_d n (eq. P33)
+  Vec3 tangential;  // the tangential force f − (f·n) n (eq. P34)
+};
+
 // What the force loop reads.
 struct ForceLoopInput {
   const Particles& particles;
@@ -33,6 +41,7 @@ struct ForceLoopInput {
   bool any_bonds;  // some contact is bonded (Simulation::has_bonds)
   double dt;
   bool keep_pair_results;  // SimParams::keep_pair_results
+  ContactWork* work = nullptr;  // per pair candidate: written where the energy log is on
 };
 
 // Each particle's net load, summed in the force loop in one order that depends on neither the

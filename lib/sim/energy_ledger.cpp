@@ -66,16 +66,11 @@ struct ContactTerms {
   FixedSum damping, tangential_work, released, walls, elastic, springs, rolling_work, rolling_springs;
 };
 
-// eq. P41-P42: a contact's rolling couple M (on i; -M on j or the wall) works on the relative spin
-// `w_mean` = w̄_i - w̄_j (a wall: w̄_i - its spin). An epsd2 spring holds ½ |M|² / k_r, taken at the
-// half step as P31 does, less ½ M · (w_i - w_j)^{n+1/2} Δt (`w_now`): the spring turns back by
-// k_r (w_i - w_j) Δt in the next step, so the change of that figure is exactly -M · w̄ Δt while the
-// spring holds.
-void account_rolling(const PairParams& q, const Vec3& couple, const Vec3& w_mean, const Vec3& w_now, double u, double r_eff, double dt,
-                     bool measure, ContactTerms& t) {
-  if (q.rolling == RollingLaw::None) return;
-  t.rolling_work.add(couple.dot(w_mean) * dt);
-  if (!measure || q.rolling != RollingLaw::ElasticPlastic) return;  // cdt holds nothing
+// eq. P42: what an epsd2 rolling spring holds, ½ |M|² / k_r at the half step as P31 takes it, less
+// ½ M · (w_i - w_j)^{n+1/2} Δt (`w_now`): the spring turns back by k_r (w_i - w_j) Δt in the next
+// step, so the change of that figure is exactly -M · w̄ Δt while the spring holds (eq. P41's work).
+void account_rolling_spring(const PairParams& q, const Vec3& couple, const Vec3& w_now, double u, double r_eff, double dt, ContactTerms& t) {
+  if (q.rolling != RollingLaw::ElasticPlastic) return;  // cdt holds nothing
   const double k_t = with_tangential_law(q, [&](auto law) {
     LaneKinematics<double> c{};
     c.overlap = u;
@@ -114,37 +109,40 @@ void account_fibres(const FibreSet& fibres, const std::vector<std::uint8_t>& bro
   }
 }
 
-// One contact (force `f` on i and n x f_t `tpr`; normal `n` from i towards j or the wall; overlap
-// `u` at x^n): its dashpot's and tangential forces' work with the mean velocities, its elastic
-// energy at the half step (eq. P31) where `measure`, and, where its bond broke this step, the bond's
-// energy. `dv_mean` = v̄_i - v̄_j at the contact point without the spin, `arm_w` = a_i w̄_i + a_j w̄_j,
-// `dv_now`, `dv_before` the same difference at n+1/2 and n-1/2 (translation only). `Normal` is the
-// scene's normal law when all pairs share one (else MixedNormal, the pair's law per contact), so
-// that the pass, which runs every step, inlines it as the force loop does.
+// What one contact holds at the half step (eq. P31) where `measure`, and, where its bond broke this
+// step, the bond's energy at the half step before, when it still held (eq. P36). `n` from i towards
+// j or the wall, `u` the overlap at x^n; `dv_now`, `dv_before` = v_i - v_j (a wall: its velocity) at
+// n+1/2 and n-1/2. `Normal` is the scene's normal law when all pairs share one (else MixedNormal,
+// the pair's law per contact), as the force loop ran it.
 template <class Normal>
-[[gnu::always_inline]] inline void account_contact(const PairParams& q, const Vec3& f, const Vec3& tpr, const Vec3& spring, const Vec3& n,
-                                                   double u, double r_eff, bool bonded, bool broke, const Vec3& dv_mean, const Vec3& arm_w,
-                                                   const Vec3& dv_now, const Vec3& dv_before, double dt, bool measure, ContactTerms& t) {
+void account_held(const PairParams& q, const Vec3& spring, const Vec3& n, double u, double r_eff, bool bonded, bool broke,
+                  const Vec3& dv_now, const Vec3& dv_before, double dt, bool measure, ContactTerms& t) {
+  with_normal_law(q.law, [&](auto law) {
+    using Law = decltype(law);
+    if (broke) t.released.add(Law::elastic_energy(q, u - 0.5 * n.dot(dv_before) * dt, r_eff, true));
+    if (!measure) return;
+    // eq. P31: at the half step n+1/2, E(u^n) + ½ f_el(u^n) Δu, Δu the overlap's change to x^{n+1}.
+    bool b = bonded;
+    const double f_el = Normal::elastic(q, u, r_eff, b);
+    t.elastic.add(Law::elastic_energy(q, u, r_eff, bonded) + 0.5 * f_el * n.dot(dv_now) * dt);
+  });
+  if (measure) t.springs.add(with_tangential_law(q, [&](auto law) { return decltype(law)::stored_energy(q, spring, u, r_eff); }));
+}
+
+// A wall contact's work with the mean velocities (force `f` on i, n x f_t `tpr`): its dashpot's,
+// f_d u̇ (eq. P33), and the rest of its power, f · (v̄_i - v_wall) + (n x f_t) · a_i w̄_i less the
+// normal part (eq. P34). `dv_mean` = v̄_i - v_wall at the contact point, `arm_w` = a_i w̄_i. (A
+// pair contact's from the forces the force loop left, ContactWork.)
+template <class Normal>
+[[gnu::always_inline]] inline void account_wall_work(const PairParams& q, const Vec3& f, const Vec3& tpr, const Vec3& n, double u,
+                                                     double r_eff, bool bonded, const Vec3& dv_mean, const Vec3& arm_w, double dt,
+                                                     ContactTerms& t) {
   const double rate = n.dot(dv_mean);  // du/dt over the step
   const double f_normal = f.dot(n);    // on i along n: < 0 repulsive
   bool b = bonded;
   const double f_el = Normal::elastic(q, u, r_eff, b);  // the elastic force at u^n (repulsive > 0)
-  // eq. P33: what the normal force did beyond the elastic one: the dashpot (and any clipping of it).
-  const double f_damp = -f_normal - f_el;
-  t.damping.add(f_damp * rate * dt);
-  // eq. P34: the rest of the contact's power, f · (v̄_i - v̄_j) + (n x f_t) · (a_i w̄_i + a_j w̄_j).
+  t.damping.add((-f_normal - f_el) * rate * dt);
   t.tangential_work.add(((f - f_normal * n).dot(dv_mean) + tpr.dot(arm_w)) * dt);
-  if (!broke && !measure) [[likely]]
-    return;
-  // What is held (and, where the bond broke this step, its energy at the half step before, when it
-  // still held, eq. P36): the pair's law, per contact.
-  with_normal_law(q.law, [&](auto law) {
-    using Law = decltype(law);
-    if (broke) t.released.add(Law::elastic_energy(q, u - 0.5 * n.dot(dv_before) * dt, r_eff, true));
-    // eq. P31: at the half step n+1/2, E(u^n) + ½ f_el(u^n) Δu, Δu the overlap's change to x^{n+1}.
-    if (measure) t.elastic.add(Law::elastic_energy(q, u, r_eff, bonded) + 0.5 * f_el * n.dot(dv_now) * dt);
-  });
-  if (measure) t.springs.add(with_tangential_law(q, [&](auto law) { return decltype(law)::stored_energy(q, spring, u, r_eff); }));
 }
 
 // One thread's share of a step's sums; summed over the threads in FixedSum's integers, so the
@@ -177,6 +175,7 @@ void Simulation::account_energy(bool any_fixed) {
   const bool global_damping = params.alpha_r != 0 || params.alpha_theta != 0;
   // Whether a particle's own terms do work this step: otherwise only a measuring step visits them.
   const bool particles_work = has_fluid || global_damping || any_fixed;
+  const bool rolling = !force_variant_ || force_variant_->rolling != RollingLaw::None;  // else no couples
   auto account_particle = [&](std::size_t k, StepSums& s) {
     const double I = p.inertia(k);
     if (measure) {
@@ -197,20 +196,29 @@ void Simulation::account_energy(bool any_fixed) {
     }
   };
   const bool breaks = !ledger_pair_bonded_.empty() || !ledger_wall_bonded_.empty();
+  const ContactWork* contact_work = ledger_contact_work_.data();  // the force loop's, per contact
   auto account_pair = [&](auto normal, std::size_t k, ContactTerms& t) {
     const bool broke = breaks && k < ledger_pair_bonded_.size() && ledger_pair_bonded_[k] && !pairs_.bonded[k];
     if (!pairs_.active[k] && !broke) return;
     const int i = pairs_.slot_i[k], j = pairs_.slot_j[k];
+    if (pairs_.active[k]) {
+      // eq. P33-P34, P41: the forces the force loop left (ContactWork) with the mean velocities,
+      // f_d n · (v̄_i - v̄_j) = f_d u̇, and the rest of the contact's power, the couple's on its own.
+      const ContactWork& c = contact_work[k];
+      const Vec3 dv = v_mean(i) - v_mean(j);
+      t.damping.add(c.damping.dot(dv) * dt);
+      t.tangential_work.add((c.tangential.dot(dv) + pairs_.sum[k].torque_per_radius.dot(p.radius[i] * w_mean(i) + p.radius[j] * w_mean(j))) * dt);
+      if (rolling) t.rolling_work.add(pairs_.rolling[k].dot(w_mean(i) - w_mean(j)) * dt);
+    }
+    if (!broke && !measure) [[likely]]
+      return;
     const Vec3 d = periodic.any() ? separation<true>(periodic, x0[i], x0[j]) : separation<false>(periodic, x0[i], x0[j]);
     const double dist = d.norm();
     const Vec3 n = d / dist;
-    const double r_eff = p.radius[i] * p.radius[j] / (p.radius[i] + p.radius[j]);
+    const double u = p.radius[i] + p.radius[j] - dist, r_eff = p.radius[i] * p.radius[j] / (p.radius[i] + p.radius[j]);
     const PairParams& q = materials.pair(p.material[i], p.material[j]);
-    account_contact<decltype(normal)>(q, pairs_.sum[k].force, pairs_.sum[k].torque_per_radius, pairs_.spring[k], n,
-                                      p.radius[i] + p.radius[j] - dist, r_eff, pairs_.bonded[k], broke, v_mean(i) - v_mean(j),
-                                      p.radius[i] * w_mean(i) + p.radius[j] * w_mean(j), p.v[i] - p.v[j], v0[i] - v0[j], dt, measure, t);
-    if (q.rolling != RollingLaw::None)
-      account_rolling(q, pairs_.rolling[k], w_mean(i) - w_mean(j), p.w[i] - p.w[j], p.radius[i] + p.radius[j] - dist, r_eff, dt, measure, t);
+    account_held<decltype(normal)>(q, pairs_.spring[k], n, u, r_eff, pairs_.bonded[k], broke, p.v[i] - p.v[j], v0[i] - v0[j], dt, measure, t);
+    if (measure && q.rolling != RollingLaw::None) account_rolling_spring(q, pairs_.rolling[k], p.w[i] - p.w[j], u, r_eff, dt, t);
   };
   auto account_wall = [&](auto normal, std::size_t k, ContactTerms& t) {
     const bool broke = breaks && k < ledger_wall_bonded_.size() && ledger_wall_bonded_[k] && !walls_.bonded[k];
@@ -225,14 +233,19 @@ void Simulation::account_energy(bool any_fixed) {
     const Vec3& f = walls_.sum[k].force;
     t.walls.add(f.dot(v_wall) * dt);  // eq. P37
     const PairParams& q = materials.pair(p.material[i], walls[w].material);
-    account_contact<decltype(normal)>(q, f, walls_.sum[k].torque_per_radius, walls_.spring[k], n, p.radius[i] - dist, p.radius[i],
-                                      walls_.bonded[k], broke, v_mean(i) - v_wall, p.radius[i] * w_mean(i), p.v[i] - v_wall, v0[i] - v_wall,
-                                      dt, measure, t);
+    const double u = p.radius[i] - dist;
+    account_wall_work<decltype(normal)>(q, f, walls_.sum[k].torque_per_radius, n, u, p.radius[i], walls_.bonded[k], v_mean(i) - v_wall,
+                                        p.radius[i] * w_mean(i), dt, t);
+    if (broke || measure)
+      account_held<decltype(normal)>(q, walls_.spring[k], n, u, p.radius[i], walls_.bonded[k], broke, p.v[i] - v_wall, v0[i] - v_wall, dt,
+                                     measure, t);
     if (q.rolling != RollingLaw::None) {
-      // The couple -M on the wall is held by its drive, which puts in M · spin (eq. P41).
+      // eq. P41: the couple M on i works on w̄_i - the wall's spin; the couple -M on the wall is held
+      // by its drive, which puts in M · spin (eq. P37).
       const Vec3& couple = walls_.rolling[k];
       t.walls.add(couple.dot(g.spin) * dt);
-      account_rolling(q, couple, w_mean(i) - g.spin, p.w[i] - g.spin, p.radius[i] - dist, p.radius[i], dt, measure, t);
+      t.rolling_work.add(couple.dot(w_mean(i) - g.spin) * dt);
+      if (measure) account_rolling_spring(q, couple, p.w[i] - g.spin, u, p.radius[i], dt, t);
     }
   };
   // Each thread its own sums over fixed ranges of the particles and contacts (a term out of range

@@ -41,8 +41,10 @@ void Simulation::compute_forces() {
   find_contacts();
   if (ledger.on && has_bonds_) ledger_pair_bonded_ = pairs_.bonded, ledger_wall_bonded_ = walls_.bonded;
   const bool any_fixed = particles.any_fixed();
+  if (ledger.on) ledger_contact_work_.resize(pairs_.size());  // the pair contacts' work for the energy ledger
   const ForceLoopInput in{particles, materials, walls, wall_geometry_, wall_runs_, wall_run_order_, wall_block_first_, periodic,
-                          any_fixed, has_bonds_, dt, params.keep_pair_results};
+                          any_fixed, has_bonds_, dt, params.keep_pair_results,
+                          ledger.on ? ledger_contact_work_.data() : nullptr};
   if (indexed_block_ != params.load_block) index_contacts_per_particle();
   block_force_.resize(particles.size());
   block_torque_.resize(particles.size());

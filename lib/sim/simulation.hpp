@@ -10,6 +10,7 @@
 #include "forces/void_fraction.hpp"
 #include "core/block_times.hpp"
 #include "forces/fibres.hpp"
+#include "forces/force_loop.hpp"
 #include "sim/energy_audit.hpp"
 #include "sim/energy_ledger.hpp"
 #include "state/load_sum.hpp"
@@ -213,6 +214,7 @@ class Simulation {
   std::vector<Vec3> ledger_x_, ledger_v_, ledger_w_;
   std::vector<std::uint8_t> ledger_pair_bonded_, ledger_wall_bonded_;
   std::vector<std::uint8_t> ledger_fibre_broken_;  // the fibre segments broken before the force loop
+  std::vector<ContactWork> ledger_contact_work_;  // while ledger.on: the force loop's, per pair candidate
   std::optional<ModelChoice> force_variant_;  // the force loop's this step (force_loop.hpp's ForceVariant)
 };
 
