@@ -40,6 +40,8 @@ struct ChunkInput {
   CandidateArrays candidates;
   PairLawArrays law;
   bool simd;  // simd_loops_on()
+  long* touched;  // ForceBlocks::touched
+  long epoch;     // ForceBlocks::epoch
 };
 
 // While the energy log is on: each contact of the chunk's ContactWork, from its separation at x^n
@@ -79,6 +81,13 @@ double pair_chunk(const ChunkInput& chunk, long first, long last) {
   double dx[kChunk + kFoundPadding], dy[kChunk + kFoundPadding], dz[kChunk + kFoundPadding];
   const FoundInChunk found{contact, dx, dy, dz};
   const int m = find_contacts<Periodic>(chunk.candidates, box, first, last, found, chunk.simd);
+  long* const touched = chunk.touched;  // local: a store through it could alias chunk
+  const long epoch = chunk.epoch;
+  for (int e = 0; e < m; ++e) {  // their particles have a contact this step (ForceBlocks::touched)
+    const long k = contact[e];
+    std::atomic_ref<long>(touched[a.slot_i[k]]).store(epoch, std::memory_order_relaxed);
+    std::atomic_ref<long>(touched[a.slot_j[k]]).store(epoch, std::memory_order_relaxed);
+  }
   // Pass 2 (pair_law_four_wide.hpp): the law on them, four at a time where the model allows.
   if constexpr (Model::four_wide)
     if (chunk.simd && m >= kMinSimdLaw) {
@@ -226,7 +235,8 @@ double wall_run(const ForceLoopInput& in, ContactList& wc, ForceBlocks& out, lon
 // r Σ n x f_t over the same runs (eq. 2.31-2.34). Without a branch (whether a candidate touches is a
 // coin toss to the branch predictor): mere candidates hold +0, which changes no bit of a sum that is
 // never -0 (the weight + 0 starts it), so the candidate set, which depends on when the list was
-// rebuilt, does not either. Four-wide with AVX2 (a contact's force and torque one masked load each,
+// rebuilt, does not either; a particle without a contact this step (ForceBlocks::touched) skips
+// its list, which changes no bit either. Four-wide with AVX2 (a contact's force and torque one masked load each,
 // a particle's loads one aligned store each), else one by one: the same operations, so the same bits.
 // With couples (rolling resistance): + M where it is i, - M where it is j, added to the torque last
 // (eq. R1).
@@ -235,6 +245,11 @@ void sum_pair_contacts_plain(const ForceBlocks& out, const ContactSum* sum, cons
   const int* const by_key = out.by_key.data();
   for (long i = lo; i < hi; ++i) {
     Vec3 force = p.mass[i] * out.body.gravity + Vec3::Zero(), arm = Vec3::Zero(), spin = Vec3::Zero();
+    if (out.touched[i] != out.epoch) {  // mere candidates only: zeros to add
+      out.force[i].v = force;
+      out.torque[i].v = Vec3::Zero();
+      continue;
+    }
     const int split = out.by_key_split[i], end = out.by_key_start[i + 1];
     for (int e = out.by_key_start[i]; e < split; ++e) {
       force += sum[by_key[e]].force;
@@ -262,8 +277,15 @@ DEM_AVX2 void sum_pair_contacts_avx2(const ForceBlocks& out, const ContactSum* s
   LoadSum* const force = out.force.data();
   LoadSum* const torque = out.torque.data();
   const double *const mass = p.mass.data(), *const radius = p.radius.data();  // not reloaded after each store
+  const long* const touched = out.touched.data();
+  const long epoch = out.epoch;
   for (long i = lo; i < hi; ++i) {
     Lanes4 f = simd::broadcast(mass[i]) * g + zero, arm{}, spin{};
+    if (touched[i] != epoch) {  // mere candidates only: zeros to add
+      simd::store_aligned(force[i].v.data(), f);
+      simd::store_aligned(torque[i].v.data(), zero);
+      continue;
+    }
     for (int e = start[i]; e < split[i]; ++e) {
       const double* c = sum[by_key[e]].force.data();
       f = f + simd::load_xyz(c);
@@ -311,8 +333,9 @@ double block_forces(const ForceLoopInput& in, ContactList& pc, ContactList& wc, 
   const long blocks = static_cast<long>(out.first.size()) - 1;
   out.times.fit(blocks, [&](long b) { return out.first[b + 1] - out.first[b] + 1; });  // candidates, until timed
   out.done.resize(blocks);
+  out.touched.resize(in.particles.size());  // new slots hold 0: before any epoch
   const ChunkInput chunk{in, CandidateArrays(in.particles, pc), PairLawArrays(in.particles, pc, in.keep_pair_results),
-                         simd_loops_on()};
+                         simd_loops_on(), out.touched.data(), out.epoch};
   double worst = 0;
 #pragma omp parallel reduction(max : worst)
   {

@@ -67,6 +67,8 @@ struct ForceBlocks {
                                     // where it is j, each run in key order
   BlockTimes& times;                // per block: its time at the last step
   std::vector<long>& done;          // per block: the epoch of the force loop that last computed it
+  std::vector<long>& touched;       // per slot: the epoch of the force loop in which it last had a
+                                    // pair contact (pass 1 stamps it; the sum skips the others' lists)
   long epoch;                       // this force loop's: unlike any before it
   const BodyForces& body;           // added last
   bool simd;                        // simd_loops_on()

@@ -52,7 +52,7 @@ void Simulation::compute_forces() {
   if (fluid) update_fluid_grains();
   const BodyForces body{params.gravity, fluid ? &params.fluid : nullptr, &fluid_grains_};
   ForceBlocks loads{params.load_block, block_first_, block_needs_, needed_from_, by_key_start_, by_key_split_, by_key_, force_times_,
-                    block_done_,       ++force_epoch_, body,       simd_loops_on(), block_force_, block_torque_};
+                    block_done_,       touched_,       ++force_epoch_, body, simd_loops_on(), block_force_, block_torque_};
   force_variant_ = choose_force_variant(materials, has_bonds());
   const double worst_overlap = compute_contact_forces(in, force_variant_, pairs_, walls_, loads);
   // Fibres: a force source after the contacts and body forces (one serial loop over segments).

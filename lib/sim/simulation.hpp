@@ -199,6 +199,7 @@ class Simulation {
   long indexed_block_ = 0;         // load_block of block_first_
   BlockTimes force_times_, integrate_times_;  // per load block, its time in each loop at the last step
   std::vector<long> block_done_;  // per load block, the epoch of the force loop that last computed it
+  std::vector<long> touched_;     // per slot, the epoch of the force loop in which it last had a pair contact
   long force_epoch_ = 0;          // force loops run (ForceBlocks::epoch)
   std::vector<LoadSum> block_force_, block_torque_;  // per slot, its net load this step (ForceBlocks)
   std::vector<int> wall_runs_;  // first wall candidate of each particle, then the end
