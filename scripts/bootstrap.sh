@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   cmake g++ make
   libeigen3-dev libhdf5-dev libvtk9-dev libcli11-dev libgtest-dev libtomlplusplus-dev
-  python3 python3-h5py python3-numpy python3-matplotlib hdf5-tools
+  python3 python3-h5py python3-numpy python3-scipy python3-matplotlib hdf5-tools
   xvfb xauth
 )
 
