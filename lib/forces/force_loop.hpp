@@ -45,8 +45,9 @@ struct ForceLoopInput {
 };
 
 // Each particle's net load, summed in the force loop in one order that depends on neither the
-// storage order nor the thread count (docs/architecture.md): its pair contacts in the order of
-// their keys, then its wall contacts in wall order, then the body forces. Each pair contact's law
+// storage order nor the thread count (docs/architecture.md): its weight, its pair contacts where
+// it is i, then those where it is j (each run in the order of their keys), then its wall contacts
+// in wall order, then the other body forces. Each pair contact's law
 // runs once and leaves its sum (ContactList::sum) in the group of its smaller storage slot; a
 // particle's pair contacts therefore all lie in the groups of its own block or earlier ones, and
 // it is summed ("finished") right after its block's contacts, while they are in cache. Blocks
