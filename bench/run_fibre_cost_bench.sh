@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # What fibres at 1 % by volume add to a step (issue 34: at most 10 %): the fibre-soil case's 1 %
-# sample part-way through its shear (out/fibre-soil/shear_1.h5, from `make -f Makefile.cases
+# loose sample at the end of its shear (out/fibre-soil/loose/shear_1.h5, from `make -f Makefile.cases
 # fibre-soil`), sheared on for 0.002 s by run-stage on one thread under valgrind's callgrind, as it
 # is (2,000 spheres, the 1 % fibres) and with its /fibres group deleted (the same spheres, contacts
 # and walls, no fibres). The cost per step is the instructions inside Simulation::advance
@@ -10,7 +10,7 @@
 # Usage: bash bench/run_fibre_cost_bench.sh [OUT_DIR]   (about 2 minutes on one core)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-dir=${1:-out/fibre-soil}
+dir=${1:-out/fibre-soil/loose}
 [ -x build/tools/run-stage ] || { echo "build first: cmake -S . -B build -DCMAKE_BUILD_TYPE=Release && cmake --build build -j2"; exit 1; }
 [ -e "$dir/shear_1.h5" ] || { echo "run the case first: make -f Makefile.cases fibre-soil"; exit 1; }
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT

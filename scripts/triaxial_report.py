@@ -28,6 +28,9 @@ import numpy as np  # noqa: E402
 from post_table import save_atomically, write_csv  # noqa: E402
 
 RESIDUAL_SPAN = 0.2  # the residual state: the mean over the last 20 % of the axial strain
+# Bands of axial strain over which the summary gives the mean q: two curves compared (a rate check)
+# band by band, where the peak alone may sit at different strains on a flat or serrated curve.
+BANDS = ((0.0, 0.02), (0.02, 0.05), (0.05, 0.10), (0.10, 0.15))
 
 
 def read_walls(path: str, box: str):
@@ -80,8 +83,10 @@ def summarise(h):
     # Dilatancy at the peak: d eps_v / d eps_a by a least-squares line over +-1 % axial strain.
     near = np.abs(h["eps_a"] - h["eps_a"][k]) <= 0.01
     dilatancy = np.polyfit(h["eps_a"][near], h["eps_v"][near], 1)[0] if near.sum() >= 3 else np.nan
+    bands = [h["q"][(h["eps_a"] >= lo) & (h["eps_a"] < hi)] for lo, hi in BANDS]
     return dict(q_peak=h["q"][k], eps_peak=h["eps_a"][k], sigma3_peak=h["sigma_3"][k], phi_peak=friction_angle(h["sigma_1"][k], h["sigma_3"][k]),
-                q_res=s1r - s3r, phi_res=friction_angle(s1r, s3r), eps_v_end=h["eps_v"][-1], dilatancy_peak=dilatancy)
+                q_res=s1r - s3r, phi_res=friction_angle(s1r, s3r), eps_v_end=h["eps_v"][-1], dilatancy_peak=dilatancy,
+                q_bands=[b.mean() if b.size else np.nan for b in bands])
 
 
 def extension_cone(dilatancy):
@@ -177,13 +182,14 @@ def main() -> None:
                 ax_f.axvline(np.degrees(np.arccos(c)), ls=":", color="grey")
         predicted = r["rho"] * mean_stress * fibre_factor(c, kp_base) if np.isfinite(mean_stress) else np.nan
         rows.append([r["label"], r["rho"], s["q_peak"], s["eps_peak"], s["sigma3_peak"], s["phi_peak"], s["q_res"], s["phi_res"], s["eps_v_end"],
-                     s["dilatancy_peak"], gain, mean_stress, predicted, predicted / base["s"]["q_peak"] if np.isfinite(predicted) else np.nan])
+                     s["dilatancy_peak"], gain, mean_stress, predicted, predicted / base["s"]["q_peak"] if np.isfinite(predicted) else np.nan,
+                     *s["q_bands"]])
         print(f"{r['label']}: peak q {s['q_peak'] / 1e3:.1f} kPa at {100 * s['eps_peak']:.2f} % (sigma_3 {s['sigma3_peak'] / 1e3:.1f} kPa), "
               f"phi_peak {s['phi_peak']:.2f} deg, residual q {s['q_res'] / 1e3:.1f} kPa, phi_res {s['phi_res']:.2f} deg, "
-              f"gain {100 * gain:+.1f} %, mean fibre stress in extension {mean_stress / 1e6:.3g} MPa, eq. P69 gain {100 * rows[-1][-1]:+.1f} %")
+              f"gain {100 * gain:+.1f} %, mean fibre stress in extension {mean_stress / 1e6:.3g} MPa, eq. P69 gain {100 * rows[-1][13]:+.1f} %")
     write_csv(a.summary, ["run", "fibre_fraction", "q_peak_Pa", "axial_strain_at_peak", "sigma_3_at_peak_Pa", "phi_peak_deg", "q_residual_Pa",
                           "phi_residual_deg", "volumetric_strain_end", "dilatancy_at_peak", "gain", "mean_fibre_stress_Pa",
-                          "predicted_dq_Pa", "predicted_gain"], rows)
+                          "predicted_dq_Pa", "predicted_gain", *[f"q_mean_{100 * lo:g}_{100 * hi:g}_percent_Pa" for lo, hi in BANDS]], rows)
     if a.fibres:
         ax_f.set_xlabel("fibre segment's angle from the axis [deg]"), ax_f.set_ylabel("tension [N]")
         ax_f.set_title("Fibre tension at the peak (dotted: edge of the extension cone, eq. P67)", fontsize=9)

@@ -5,7 +5,7 @@
 # that the table does not place. Usage: check_layers.sh [LIB_DIR]
 set -eu
 lib=${1:-$(dirname "$0")/../lib}
-rank="core=0 simd=1 contact=2 state=3 walls=4 search=5 forces=6 integrate=6 sim=7 scene=8
+rank="core=0 simd=1 contact=2 state=3 walls=4 search=5 integrate=5 forces=6 sim=7 scene=8
       generation=9 post=9 control=9 io=10 run=11"
 
 status=0

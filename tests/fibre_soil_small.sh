@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The fibre-soil case (workflows/fibre-soil) at the small size: its scene as it is (materials,
-# consolidation, the shear stages) on 400 spheres (workflows/fibre-soil/small_scene.sh), sheared
+# consolidation, the shear stages) on 400 spheres (workflows/fibre-soil/scene_variant.sh small), sheared
 # to 10 % axial strain without fibres and with 1 % of fibres by volume, from the same consolidated
 # sample. Checks, on the triaxial report of the wall log (scripts/triaxial_report.py):
 # 1. the side walls held sigma_3: at the peak within 5 % of 100 kPa (the servos' PI control; a
@@ -19,7 +19,7 @@ set -euo pipefail
 bin=$1 src=$(cd "$2" && pwd) py=$3
 case_dir=$src/../workflows/fibre-soil
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
-bash "$case_dir/small_scene.sh" "$case_dir/scene.toml" > "$tmp/small.toml"
+bash "$case_dir/scene_variant.sh" "$case_dir/scene.toml" small > "$tmp/small.toml"
 "$bin/gen-primary" --scene "$tmp/small.toml" --out "$tmp/filled.h5" --quiet
 "$bin/compact" --scene "$tmp/small.toml" --in "$tmp/filled.h5" --out "$tmp/consolidated.h5" --quiet
 for stage in shear_0 shear_1; do

@@ -246,6 +246,53 @@ TEST(Determinism, SumsWaitForTheirContactsWhenAThreadLags) {
   omp_set_num_threads(threads_before);
 }
 
+// Where nothing reads the state between the loads and the motion, each block of particles moves
+// within the force loop as soon as its loads are summed (ForceBlocks::motion), its state kept for
+// the energy ledger as it moves; a step where the energy check measures (or, here, every step:
+// set_motion_apart_for_tests) takes them apart. Both end with the same bits, the ledger's figures
+// and the energy check's balance included: on one thread, and on three with small blocks and each
+// thread in turn lagging (a block moved before another thread's contacts had read its particles
+// would show), with walls (one of them moving), periodic boundaries and a storage re-sorted every
+// 7 steps.
+TEST(Determinism, MotionInTheForceLoopGivesTheSeparatePassBits) {
+  const int threads_before = omp_get_max_threads();
+  auto run = [&](bool apart, int threads, int lagging) {
+    Simulation s = make_pressed_lattice(true);
+    shuffle_storage(s, 3);
+    s.params.load_block = 16;
+    s.params.sort_every = 7, s.params.sort_min_particles = 0;
+    s.walls[1].motion.velocity = Vec3(-0.01, 0, 0);  // pressing in
+    s.params.max_energy_gain = 1e9;  // on, never stopping the run
+    s.ledger.on = true;
+    omp_set_num_threads(threads);
+    set_lagging_thread_for_tests(lagging, 50);
+    set_motion_apart_for_tests(apart);
+    for (int k = 0; k < 40; ++k) s.advance();
+    set_motion_apart_for_tests(false);
+    set_lagging_thread_for_tests(-1, 0);
+    return s;
+  };
+  const Simulation apart = run(true, 1, -1);
+  ASSERT_GT(apart.pair_contact_count(), 500u) << "the test must exercise contacts";
+  ASSERT_GT(apart.wall_contact_count(), 0u);
+  ASSERT_NE(apart.ledger.totals.work_walls, 0.0) << "the moving wall must press on the particles";
+  ASSERT_NE(apart.ledger.totals.damping_normal, 0.0);
+  for (const auto& [threads, lagging] : {std::pair{1, -1}, {3, 0}, {3, 1}, {3, 2}}) {
+    const Simulation s = run(false, threads, lagging);
+    const std::string what = std::to_string(threads) + " threads, thread " + std::to_string(lagging) + " lagging";
+    EXPECT_TRUE(same_bits(apart.particles.x, s.particles.x)) << what;
+    EXPECT_TRUE(same_bits(apart.particles.v, s.particles.v)) << what;
+    EXPECT_TRUE(same_bits(apart.particles.w, s.particles.w)) << what;
+    EXPECT_TRUE(same_bits(apart.particles.image, s.particles.image)) << what;
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(apart.ledger.totals.damping_normal), std::bit_cast<std::uint64_t>(s.ledger.totals.damping_normal)) << what;
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(apart.ledger.totals.tangential_work), std::bit_cast<std::uint64_t>(s.ledger.totals.tangential_work)) << what;
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(apart.ledger.totals.work_walls), std::bit_cast<std::uint64_t>(s.ledger.totals.work_walls)) << what;
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(apart.energy_balance().wall_work), std::bit_cast<std::uint64_t>(s.energy_balance().wall_work)) << what;
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(apart.energy_balance().now.total()), std::bit_cast<std::uint64_t>(s.energy_balance().now.total())) << what;
+  }
+  omp_set_num_threads(threads_before);
+}
+
 // The checkpoint of a run does not depend on its storage order either: the pressed lattice with
 // walls, as built and never sorted, and shuffled and sorted every 7 steps (on two threads), writes
 // checkpoints whose datasets are identical bit for bit after 60 steps (files list particles in id

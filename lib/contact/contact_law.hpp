@@ -61,6 +61,7 @@ struct ContactModel {
     Tangential::force(p, c, k_t, vt, fn, bonded, c_t, dt, spring, f.tangential);
     f.on_i = (-fn) * n + f.tangential;
     f.couple = Rolling::couple(p, c, f_el, k_t, dt, rolling);
+    f.normal = fn, f.elastic = f_el;
     return f;
   }
   template <class L, class P, class M>
@@ -96,15 +97,15 @@ struct ContactModel {
   }
   [[gnu::always_inline]] static ContactForce evaluate_in_plane(const PairParams& p, const ContactKinematics& c, double dt, Vec3& spring,
                                                                std::uint8_t& bonded, double& mark, Vec3& rolling) {
-    const LaneKinematics<double> k{lanes::triple(c.n),  c.overlap, lanes::triple(c.v_rel), lanes::triple(c.w_arm),
-                                   c.m_eff, c.r_eff, lanes::triple(c.w_rel)};
+    LaneKinematics<double> k{lanes::triple(c.n), c.overlap, lanes::triple(c.v_rel), lanes::triple(c.w_arm), c.m_eff, c.r_eff};
+    if constexpr (has_rolling) k.w_rel = lanes::triple(c.w_rel);  // set only then (ContactKinematics)
     lanes::Triple<double> s = lanes::triple(spring), r = lanes::triple(rolling);
     bool b = bonded != 0;
     const LaneForce<double> f = evaluate_in_plane(p, k, dt, s, b, mark, r);
     spring = lanes::vec3(s);
     if constexpr (Rolling::has_history) rolling = lanes::vec3(r);
     bonded = b;
-    return {lanes::vec3(f.on_i), lanes::vec3(f.tangential), lanes::vec3(f.couple)};
+    return {lanes::vec3(f.on_i), lanes::vec3(f.tangential), lanes::vec3(f.couple), f.normal, f.elastic};
   }
 };
 

@@ -14,13 +14,26 @@ struct ContactKinematics {
   Vec3 w_arm;      // a_j w_j + a_i w_i (wall: a_i w_i), for eq. 2.12
   double m_eff;    // m_i m_j / (m_i + m_j), wall: m_i
   double r_eff;    // R* = a_i a_j / (a_i + a_j), wall: a_i (a law that needs it: hertz)
-  Vec3 w_rel = Vec3::Zero();  // w_i - w_j (wall: w_i - the wall's spin), set where a rolling law reads it
+  // w_i - w_j (wall: w_i - the wall's spin): set only where the model has a rolling law, the one
+  // reader (no default: the force loop's array of a chunk's kinematics would zero it for every slot).
+  Vec3 w_rel;
 };
 
 struct ContactForce {
   Vec3 on_i;        // total force on i [N]; j receives the opposite (eq. 2.31-2.32)
   Vec3 tangential;  // tangential part of on_i, for the torques of eq. 2.33-2.34
   Vec3 couple = Vec3::Zero();  // rolling resistance: a torque on i [N m], on j the opposite (eq. R1)
+  // The normal force f_n (repulsive > 0: on_i = -f_n n + tangential) and its elastic part f_el at
+  // the overlap with the bond as the law left it: the energy ledger's dashpot work (eq. P33).
+  double normal = 0, elastic = 0;
+};
+
+// While the energy log is on (sim/energy_ledger.hpp): what the law leaves of a pair contact for the
+// ledger's work (docs/physics.md eq. P33-P34), so that the pass after the motion need not take its
+// geometry and law again: only the velocities of the step are left to it. On i; on j the opposite.
+struct ContactWork {
+  Vec3 damping;     // the normal force beyond the elastic one, (f_n - f_el) n (eq. P33)
+  Vec3 tangential;  // the tangential force (eq. P34)
 };
 
 // The law, written once over a lane type L (simd/lanes.hpp): one contact (L = double, from the
@@ -55,6 +68,7 @@ template <class L>
 template <class L>
 struct LaneForce {
   lanes::Triple<L> on_i, tangential, couple;  // as ContactForce
+  L normal, elastic;                          // as ContactForce (compiled away where unread)
 };
 
 }  // namespace dem

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <thread>
 #include <type_traits>
@@ -40,32 +41,9 @@ struct ChunkInput {
   CandidateArrays candidates;
   PairLawArrays law;
   bool simd;  // simd_loops_on()
-  long* touched;  // ForceBlocks::touched
-  long epoch;     // ForceBlocks::epoch
+  std::uint8_t* touched;  // ForceBlocks::touched
+  std::uint8_t stamp;     // the low byte of ForceBlocks::epoch
 };
-
-// While the energy log is on: each contact of the chunk's ContactWork, from its separation at x^n
-// (as pass 2 takes it) and the force its law just left. f_el is the law's elastic force at u^n with
-// the bond as the law left it (eq. P33).
-template <class Normal>
-void record_contact_work(const ChunkInput& chunk, const FoundInChunk& found, int m) {
-  const PairLawArrays& a = chunk.law;
-  ContactWork* const work = chunk.in.work;
-  for (int e = 0; e < m; ++e) {
-    const long k = found.contact[e];
-    const int i = a.slot_i[k], j = a.slot_j[k];
-    const Vec3 d(found.dx[e], found.dy[e], found.dz[e]);
-    const double dist = d.norm();
-    const Vec3 n = d * (1.0 / dist);
-    const double r_eff = a.radius[i] * a.radius[j] / (a.radius[i] + a.radius[j]);
-    bool bonded = a.bonded[k] != 0;
-    const double f_el =
-        Normal::elastic(chunk.in.materials.pair(a.material[i], a.material[j]), a.radius[i] + a.radius[j] - dist, r_eff, bonded);
-    const Vec3& f = a.sum[k].force;
-    const double f_normal = f.dot(n);  // < 0 repulsive
-    work[k] = {(-f_normal - f_el) * n, f - f_normal * n};
-  }
-}
 
 // The candidates [first, last) of one block. Periodic: distances to the nearest image; Fixed: some
 // particles are fixed in place. Both are template parameters so that a scene without them pays
@@ -81,19 +59,17 @@ double pair_chunk(const ChunkInput& chunk, long first, long last) {
   double dx[kChunk + kFoundPadding], dy[kChunk + kFoundPadding], dz[kChunk + kFoundPadding];
   const FoundInChunk found{contact, dx, dy, dz};
   const int m = find_contacts<Periodic>(chunk.candidates, box, first, last, found, chunk.simd);
-  long* const touched = chunk.touched;  // local: a store through it could alias chunk
-  const long epoch = chunk.epoch;
+  std::uint8_t* const touched = chunk.touched;  // local: a store through it could alias chunk
+  const std::uint8_t stamp = chunk.stamp;
   for (int e = 0; e < m; ++e) {  // their particles have a contact this step (ForceBlocks::touched)
     const long k = contact[e];
-    std::atomic_ref<long>(touched[a.slot_i[k]]).store(epoch, std::memory_order_relaxed);
-    std::atomic_ref<long>(touched[a.slot_j[k]]).store(epoch, std::memory_order_relaxed);
+    std::atomic_ref<std::uint8_t>(touched[a.slot_i[k]]).store(stamp, std::memory_order_relaxed);
+    std::atomic_ref<std::uint8_t>(touched[a.slot_j[k]]).store(stamp, std::memory_order_relaxed);
   }
   // Pass 2 (pair_law_four_wide.hpp): the law on them, four at a time where the model allows.
   if constexpr (Model::four_wide)
     if (chunk.simd && m >= kMinSimdLaw) {
-      const double worst = pair_law_four_wide<Model, Fixed>(a, materials, dt, found, m, chunk.in.any_bonds);
-      if (chunk.in.work) record_contact_work<typename Model::NormalModel>(chunk, found, m);
-      return worst;
+      return pair_law_four_wide<Model, Fixed>(a, materials, dt, found, m, chunk.in.any_bonds);
     }
   // Pass 2, in three loops over the chunk's contacts: their kinematics, their springs turned into
   // the tangent plane, the law. Each loop is short and its contacts independent, so the processor
@@ -126,11 +102,10 @@ double pair_chunk(const ChunkInput& chunk, long first, long last) {
     const ContactKinematics& c = kin[e];
     const PairParams& params = materials.pair(a.material[i], a.material[j]);
     const ContactForce f = Model::evaluate_in_plane(params, c, dt, a.spring[k], a.bonded[k], a.dashpot[k], a.rolling[k]);
-    keep_pair_result(a, k, c.n, f.on_i, c.n.cross(f.tangential));
+    keep_pair_result(a, k, c.n, f);
     if constexpr (Model::has_rolling) a.rolling[k] = f.couple;  // summed with the loads (finish_block)
     worst = std::max(worst, relative_overlap_if_larger(c.overlap, std::min(a.radius[i], a.radius[j]), worst));
   }
-  if (chunk.in.work) record_contact_work<typename Model::NormalModel>(chunk, found, m);
   return worst;
 }
 
@@ -161,9 +136,10 @@ struct WallScratch {
 };
 
 // The wall candidates of run r (one particle's, in order) after its pair contacts: whether each is a
-// contact, its law, its loads added to the particle's. Returns the largest relative overlap.
+// contact, its law, its loads added to the particle's; with `power`, the walls' power f · v_wall
+// at the contact points added to it. Returns the largest relative overlap.
 template <class Model>
-double wall_run(const ForceLoopInput& in, ContactList& wc, ForceBlocks& out, long r, WallScratch& scratch) {
+double wall_run(const ForceLoopInput& in, ContactList& wc, ForceBlocks& out, long r, WallScratch& scratch, double* power) {
   const Particles& p = in.particles;
   const int first = in.wall_runs[r], n = in.wall_runs[r + 1] - first;
   const int i = wc.slot_i[first];
@@ -209,7 +185,8 @@ double wall_run(const ForceLoopInput& in, ContactList& wc, ForceBlocks& out, lon
     c.n = dist > 0 ? Vec3(to_wall[e] * (1.0 / dist)) : g.normal;  // one division, as the pair contacts
     c.overlap = p.radius[i] - dist;  // eq. 2.17
     // eq. 2.18: the velocity of the wall's material at the contact point enters.
-    c.v_rel = g.velocity_of(p.x[i] + to_wall[e]) - p.v[i];
+    const Vec3 v_wall = g.velocity_of(p.x[i] + to_wall[e]);
+    c.v_rel = v_wall - p.v[i];
     c.w_arm = p.radius[i] * p.w[i];
     c.m_eff = p.mass[i];
     c.r_eff = p.radius[i];  // a wall: infinite radius, eq. H3
@@ -224,10 +201,44 @@ double wall_run(const ForceLoopInput& in, ContactList& wc, ForceBlocks& out, lon
     out.force[i].v += f.on_i;  // eq. 2.31
     out.torque[i].v += p.radius[i] * torque_per_radius;  // eq. 2.33
     if constexpr (Model::has_rolling) out.torque[i].v += f.couple;  // eq. R1
+    if (power) *power += f.on_i.dot(v_wall);
     worst = std::max(worst, relative_overlap_if_larger(c.overlap, p.radius[i], worst));
   }
   return worst;
 }
+
+// A particle's three components as the sum pass adds them: a Vec3 in the plain loops, one Lanes4
+// (its fourth lane unread) in the four-wide ones, so that the pass is written once (sum_loads).
+// read_pair: a contact's two vectors (ContactSum, ContactWork: six doubles).
+[[gnu::always_inline]] inline void read_pair(const double* six, Vec3& a, Vec3& b) { a = Vec3(six[0], six[1], six[2]), b = Vec3(six[3], six[4], six[5]); }
+template <class V>
+V xyz(const Vec3& a);
+template <>
+[[gnu::always_inline]] inline Vec3 xyz<Vec3>(const Vec3& a) {
+  return a;
+}
+[[gnu::always_inline]] inline void put(LoadSum& s, const Vec3& a) { s.v = a; }
+static_assert(sizeof(ContactSum) == 6 * sizeof(double) && offsetof(ContactSum, torque_per_radius) == 3 * sizeof(double));
+static_assert(sizeof(ContactWork) == 6 * sizeof(double) && offsetof(ContactWork, tangential) == 3 * sizeof(double));
+#ifdef DEM_SIMD_LOOPS
+// Two loads that stay inside the contact's six doubles: [a0 a1 a2 b0] and [a2 b0 b1 b2] moved down.
+[[gnu::always_inline]] inline void read_pair(const double* six, lanes::Lanes4& a, lanes::Lanes4& b) {
+  a = lanes::load4(six), b = lanes::shift_down(lanes::load4(six + 2));
+}
+template <>
+[[gnu::always_inline]] inline lanes::Lanes4 xyz<lanes::Lanes4>(const Vec3& a) {  // one at the end of an array: no wider load
+  return lanes::lanes4(a.x(), a.y(), a.z(), 0.0);
+}
+[[gnu::always_inline]] inline void put(LoadSum& s, lanes::Lanes4 a) { lanes::store4(s.v.data(), a); }  // all four doubles of s
+#endif
+
+// What the sum pass reads per pair candidate.
+struct PairResults {
+  const ContactSum* sum;
+  const Vec3* couple;          // the rolling couples (read where the model has them)
+  const ContactWork* work;     // while the energy log is on (written for contacts only), else null
+  const std::uint8_t* active;  // whether each is a contact this step
+};
 
 // The net loads of particles [lo, hi) from their weight and their pair contacts (written, not added
 // to), each particle's in one order of its own (ForceBlocks::by_key): its weight m g, then + f of
@@ -236,95 +247,92 @@ double wall_run(const ForceLoopInput& in, ContactList& wc, ForceBlocks& out, lon
 // coin toss to the branch predictor): mere candidates hold +0, which changes no bit of a sum that is
 // never -0 (the weight + 0 starts it), so the candidate set, which depends on when the list was
 // rebuilt, does not either; a particle without a contact this step (ForceBlocks::touched) skips
-// its list, which changes no bit either. Four-wide with AVX2 (a contact's force and torque one masked load each,
-// a particle's loads one aligned store each), else one by one: the same operations, so the same bits.
+// its list, which changes no bit either. Written once over a particle's three components: a Vec3
+// in the plain loops, one four-lane register with AVX2; the same operations, so the same bits.
 // With couples (rolling resistance): + M where it is i, - M where it is j, added to the torque last
-// (eq. R1).
-template <bool Couples>
-void sum_pair_contacts_plain(const ForceBlocks& out, const ContactSum* sum, const Vec3* couple, const Particles& p, long lo, long hi) {
-  const int* const by_key = out.by_key.data();
-  for (long i = lo; i < hi; ++i) {
-    Vec3 force = p.mass[i] * out.body.gravity + Vec3::Zero(), arm = Vec3::Zero(), spin = Vec3::Zero();
-    if (out.touched[i] != out.epoch) {  // mere candidates only: zeros to add
-      out.force[i].v = force;
-      out.torque[i].v = Vec3::Zero();
-      continue;
-    }
-    const int split = out.by_key_split[i], end = out.by_key_start[i + 1];
-    for (int e = out.by_key_start[i]; e < split; ++e) {
-      force += sum[by_key[e]].force;
-      arm += sum[by_key[e]].torque_per_radius;
-      if constexpr (Couples) spin += couple[by_key[e]];
-    }
-    for (int e = split; e < end; ++e) {
-      force -= sum[by_key[e]].force;
-      arm += sum[by_key[e]].torque_per_radius;
-      if constexpr (Couples) spin -= couple[by_key[e]];
-    }
-    out.force[i].v = force;
-    out.torque[i].v = Couples ? Vec3(p.radius[i] * arm + spin) : Vec3(p.radius[i] * arm);
-  }
-}
-#ifdef DEM_SIMD_LOOPS
-template <bool Couples>
-DEM_AVX2 void sum_pair_contacts_avx2(const ForceBlocks& out, const ContactSum* sum, const Vec3* couple, const Particles& p, long lo,
-                                     long hi) {
-  using lanes::Lanes4;
+// (eq. R1). With the energy log (Ledger): the same runs of its contacts' ContactWork into
+// ForceBlocks::work (a mere candidate's is not written, nor read: the memory it spares is worth
+// the branch; masked, it read every candidate's: the log 10 % more instructions, no faster).
+template <class V, bool Couples, bool Ledger>
+[[gnu::always_inline]] inline void sum_loads(const ForceBlocks& out, const PairResults& r, const Particles& p, long lo, long hi) {
   const int* const by_key = out.by_key.data();
   const int* const start = out.by_key_start.data();
   const int* const split = out.by_key_split.data();
-  const Lanes4 g = simd::load_xyz(out.body.gravity.data()), zero{};
   LoadSum* const force = out.force.data();
   LoadSum* const torque = out.torque.data();
   const double *const mass = p.mass.data(), *const radius = p.radius.data();  // not reloaded after each store
-  const long* const touched = out.touched.data();
-  const long epoch = out.epoch;
+  const std::uint8_t* const touched = out.touched.data();
+  const std::uint8_t stamp = static_cast<std::uint8_t>(out.epoch);
+  const V g = xyz<V>(out.body.gravity), zero = xyz<V>(Vec3::Zero());
   for (long i = lo; i < hi; ++i) {
-    Lanes4 f = simd::broadcast(mass[i]) * g + zero, arm{}, spin{};
-    if (touched[i] != epoch) {  // mere candidates only: zeros to add
-      simd::store_aligned(force[i].v.data(), f);
-      simd::store_aligned(torque[i].v.data(), zero);
+    V f = V(mass[i] * g) + zero, arm = zero, spin = zero, damping = zero, tangential = zero;
+    if (touched[i] != stamp) {  // mere candidates only: zeros to add
+      put(force[i], f);
+      put(torque[i], zero);
+      if constexpr (Ledger) put(out.work[i].damping, zero), put(out.work[i].tangential, zero), put(out.work[i].torque_per_radius, zero),
+          put(out.work[i].couple, zero);
       continue;
     }
+    V force_k, torque_k, damping_k, tangential_k;
     for (int e = start[i]; e < split[i]; ++e) {
-      const double* c = sum[by_key[e]].force.data();
-      f = f + simd::load_xyz(c);
-      arm = arm + simd::load_xyz(c + 3);
-      if constexpr (Couples) spin = spin + simd::load_xyz(couple[by_key[e]].data());
+      const int k = by_key[e];
+      read_pair(r.sum[k].force.data(), force_k, torque_k);
+      f = f + force_k, arm = arm + torque_k;
+      if constexpr (Couples) spin = spin + xyz<V>(r.couple[k]);
+      if constexpr (Ledger)
+        if (r.active[k]) read_pair(r.work[k].damping.data(), damping_k, tangential_k), damping = damping + damping_k, tangential = tangential + tangential_k;
     }
     for (int e = split[i]; e < start[i + 1]; ++e) {
-      const double* c = sum[by_key[e]].force.data();
-      f = f - simd::load_xyz(c);
-      arm = arm + simd::load_xyz(c + 3);
-      if constexpr (Couples) spin = spin - simd::load_xyz(couple[by_key[e]].data());
+      const int k = by_key[e];
+      read_pair(r.sum[k].force.data(), force_k, torque_k);
+      f = f - force_k, arm = arm + torque_k;
+      if constexpr (Couples) spin = spin - xyz<V>(r.couple[k]);
+      if constexpr (Ledger)
+        if (r.active[k]) read_pair(r.work[k].damping.data(), damping_k, tangential_k), damping = damping - damping_k, tangential = tangential - tangential_k;
     }
-    simd::store_aligned(force[i].v.data(), f);  // a LoadSum's fourth double is never read
-    if constexpr (Couples) simd::store_aligned(torque[i].v.data(), simd::broadcast(radius[i]) * arm + spin);
-    else simd::store_aligned(torque[i].v.data(), simd::broadcast(radius[i]) * arm);
+    put(force[i], f);
+    if constexpr (Couples) put(torque[i], V(V(radius[i] * arm) + spin));
+    else put(torque[i], V(radius[i] * arm));
+    if constexpr (Ledger)
+      put(out.work[i].damping, damping), put(out.work[i].tangential, tangential), put(out.work[i].torque_per_radius, arm), put(out.work[i].couple, spin);
   }
 }
-#endif
-template <bool Couples>
-void sum_pair_contacts(const ForceBlocks& out, const ContactSum* sum, const Vec3* couple, const Particles& p, long lo, long hi) {
+template <bool Couples, bool Ledger>
+void sum_pair_contacts_plain(const ForceBlocks& out, const PairResults& r, const Particles& p, long lo, long hi) {
+  sum_loads<Vec3, Couples, Ledger>(out, r, p, lo, hi);
+}
 #ifdef DEM_SIMD_LOOPS
-  if (out.simd) return sum_pair_contacts_avx2<Couples>(out, sum, couple, p, lo, hi);
+template <bool Couples, bool Ledger>
+DEM_AVX2 void sum_pair_contacts_avx2(const ForceBlocks& out, const PairResults& r, const Particles& p, long lo, long hi) {
+  sum_loads<lanes::Lanes4, Couples, Ledger>(out, r, p, lo, hi);
+}
 #endif
-  sum_pair_contacts_plain<Couples>(out, sum, couple, p, lo, hi);
+template <bool Couples, bool Ledger>
+void sum_pair_contacts(const ForceBlocks& out, const PairResults& r, const Particles& p, long lo, long hi) {
+#ifdef DEM_SIMD_LOOPS
+  if (out.simd) return sum_pair_contacts_avx2<Couples, Ledger>(out, r, p, lo, hi);
+#endif
+  sum_pair_contacts_plain<Couples, Ledger>(out, r, p, lo, hi);
 }
 
 // The net loads of block b's particles (ForceBlocks): each one's weight and pair contacts, then its
-// wall contacts, then the fluid's force. Called once every block holding a pair contact of
-// theirs has been computed.
+// wall contacts, then the fluid's force; then, within a step, their motion (`not_finite`: the last
+// slot whose new state is not finite). Called once every block holding a pair contact of theirs
+// has been computed.
 template <class Model>
 double finish_block(const ForceLoopInput& in, const ContactList& pc, ContactList& wc, ForceBlocks& out, long b,
-                    WallScratch& scratch) {
+                    WallScratch& scratch, long& not_finite) {
   const Particles& p = in.particles;
   const long lo = b * out.block, hi = std::min(static_cast<long>(p.size()), lo + out.block);
-  sum_pair_contacts<Model::has_rolling>(out, pc.sum.data(), pc.rolling.data(), p, lo, hi);
-  double worst = 0;
+  const PairResults r{pc.sum.data(), pc.rolling.data(), in.work, pc.active.data()};
+  if (out.work) sum_pair_contacts<Model::has_rolling, true>(out, r, p, lo, hi);
+  else sum_pair_contacts<Model::has_rolling, false>(out, r, p, lo, hi);
+  double worst = 0, power = 0;
   for (int q = in.wall_block_first[b]; q < in.wall_block_first[b + 1]; ++q)
-    worst = std::max(worst, wall_run<Model>(in, wc, out, in.wall_run_order[q], scratch));
+    worst = std::max(worst, wall_run<Model>(in, wc, out, in.wall_run_order[q], scratch, out.wall_power ? &power : nullptr));
+  if (out.wall_power) out.wall_power[b] = power;
   if (out.body.fluid) out.body.add_fluid(p, lo, hi, out.force.data(), out.simd);
+  if (out.motion) not_finite = std::max(not_finite, move_particles(out.motion->arrays, out.motion->constants, lo, hi));
   return worst;
 }
 
@@ -334,10 +342,11 @@ double block_forces(const ForceLoopInput& in, ContactList& pc, ContactList& wc, 
   out.times.fit(blocks, [&](long b) { return out.first[b + 1] - out.first[b] + 1; });  // candidates, until timed
   out.done.resize(blocks);
   out.touched.resize(in.particles.size());  // new slots hold 0: before any epoch
-  const ChunkInput chunk{in, CandidateArrays(in.particles, pc), PairLawArrays(in.particles, pc, in.keep_pair_results),
-                         simd_loops_on(), out.touched.data(), out.epoch};
+  const ChunkInput chunk{in, CandidateArrays(in.particles, pc), PairLawArrays(in.particles, pc, in.keep_pair_results, in.work),
+                         simd_loops_on(), out.touched.data(), static_cast<std::uint8_t>(out.epoch)};
   double worst = 0;
-#pragma omp parallel reduction(max : worst)
+  long not_finite = -1;
+#pragma omp parallel reduction(max : worst, not_finite)
   {
     const long threads = omp_get_num_threads(), t = omp_get_thread_num();
     // Each thread takes a contiguous run of blocks holding about its share of the last step's
@@ -369,7 +378,7 @@ double block_forces(const ForceLoopInput& in, ContactList& pc, ContactList& wc, 
       const long tb = BlockTimes::now();
       if (b < early) pairs_of(b);
       // Finished now, while its contacts are in cache, unless some lie in another thread's blocks.
-      if (out.needs[b] >= start) worst = std::max(worst, finish_block<Model>(in, pc, wc, out, b, mine));
+      if (out.needs[b] >= start) worst = std::max(worst, finish_block<Model>(in, pc, wc, out, b, mine, not_finite));
       else deferred.push_back(b);
       if (b < early) out.times.record(b, tb);
       else out.times.add(b, tb);
@@ -377,10 +386,11 @@ double block_forces(const ForceLoopInput& in, ContactList& pc, ContactList& wc, 
     for (long b : deferred) {
       for (long o = out.needs[b]; o < start; ++o) wait_until_done(out.done, o, tick);
       const long tb = BlockTimes::now();  // after the wait: a block's time is its own work
-      worst = std::max(worst, finish_block<Model>(in, pc, wc, out, b, mine));
+      worst = std::max(worst, finish_block<Model>(in, pc, wc, out, b, mine, not_finite));
       out.times.add(b, tb);
     }
   }
+  out.not_finite = not_finite;
   return worst;
 }
 

@@ -7,8 +7,10 @@
 #include <vector>
 
 #include "contact/contact_list.hpp"
+#include "contact/kinematics.hpp"
 #include "core/block_times.hpp"
 #include "forces/body_forces.hpp"
+#include "integrate/motion.hpp"
 #include "state/load_sum.hpp"
 #include "state/materials.hpp"
 #include "state/particles.hpp"
@@ -19,13 +21,23 @@ namespace dem {
 
 class Simulation;
 
-// While the energy log is on (sim/energy_ledger.hpp): what the force loop leaves for the ledger's
-// work of a pair contact (docs/physics.md eq. P33-P34), so that the pass after the motion need not
-// take its geometry and law again: only the velocities of the step are left to it.
-struct ContactWork {  // per pair candidate, on i (on j the opposite); written where a contact only
-  Vec3 damping;     // the normal force beyond the elastic one, f_d n (eq. P33)
-  Vec3 tangential;  // the tangential force f − (f·n) n (eq. P34)
+// While the energy log is on: per particle, over its pair contacts as its net load sums them (+ where
+// it is i, - where it is j; n x f_t + in both), their ContactWork, n x f_t and rolling couples, so that
+// the ledger takes the contacts' work per particle: Σ_k f_k · (v̄_i - v̄_j) = Σ_p F_p · v̄_p.
+struct ParticleWork {
+  LoadSum damping;            // Σ ± f_d n
+  LoadSum tangential;         // Σ ± f_t
+  LoadSum torque_per_radius;  // Σ n x f_t (times the radius: the contacts' torque)
+  LoadSum couple;             // Σ ± M (rolling resistance), else 0
 };
+
+// A contact's force f on i split into ContactWork's parts from f alone (n from i to its partner,
+// f_el the law's elastic force at its overlap, repulsive > 0): the wall contacts, in the ledger's
+// pass (a pair contact's law leaves its own, ContactForce::normal and ::elastic).
+inline ContactWork split_contact_force(const Vec3& f, const Vec3& n, double f_el) {
+  const double f_normal = f.dot(n);  // < 0 repulsive
+  return {(-f_normal - f_el) * n, f - f_normal * n};
+}
 
 // What the force loop reads.
 struct ForceLoopInput {
@@ -41,7 +53,7 @@ struct ForceLoopInput {
   bool any_bonds;  // some contact is bonded (Simulation::has_bonds)
   double dt;
   bool keep_pair_results;  // SimParams::keep_pair_results
-  ContactWork* work = nullptr;  // per pair candidate: written where the energy log is on
+  ContactWork* work = nullptr;  // per pair candidate: written by the law where the energy log is on
 };
 
 // Each particle's net load, summed in the force loop in one order that depends on neither the
@@ -68,13 +80,24 @@ struct ForceBlocks {
                                     // where it is j, each run in key order
   BlockTimes& times;                // per block: its time at the last step
   std::vector<long>& done;          // per block: the epoch of the force loop that last computed it
-  std::vector<long>& touched;       // per slot: the epoch of the force loop in which it last had a
-                                    // pair contact (pass 1 stamps it; the sum skips the others' lists)
+  std::vector<std::uint8_t>& touched;  // per slot: the low byte of the epoch of the force loop in which
+                                       // it last had a pair contact (pass 1 stamps it; the sum skips
+                                       // the others' lists; a stale stamp equal to this loop's only
+                                       // makes a particle add its zeros)
   long epoch;                       // this force loop's: unlike any before it
   const BodyForces& body;           // added last
   bool simd;                        // simd_loops_on()
   std::vector<LoadSum>& force;      // per slot: the net force [N] (written, not added to)
   std::vector<LoadSum>& torque;     // per slot: the net torque [N m]
+  ParticleWork* work = nullptr;     // per slot, written while the energy log is on (ForceLoopInput::work)
+  double* wall_power = nullptr;     // per block, where asked: Σ f · v_wall over its particles' wall
+                                    // contacts (the walls' power, for the energy check) [W]
+  // Within a step (Simulation::advance): each block's particles then move (integrate/motion.hpp)
+  // as soon as their loads are summed, while those and the particles are in cache. No contact
+  // still to compute reads them: a particle's contacts lie in its block or earlier ones, all done
+  // by then. Null: the loads only (post-processing, or a step whose checks read the state first).
+  const MotionStep* motion = nullptr;
+  long not_finite = -1;  // with motion: the last slot whose new state is not finite (move_particles)
 };
 
 // Tests only: thread `thread` of the force loop pauses `microseconds` before each block whose
@@ -154,8 +177,8 @@ void counted_wall_touches(const Particles& p, const std::vector<WallGeometry>& g
 // For every candidate of `pairs` and `walls`: decides whether it is a contact (`active`: touching,
 // or holding by a bond), and if so fills .sum and .normal (of pair contacts only where
 // in.keep_pair_results) and updates its history; a candidate that is no contact gets a zero .sum
-// and loses its spring. Then each particle's net load into `blocks`. Returns the largest overlap
-// relative to the smaller radius of its contact.
+// and loses its spring. Then each particle's net load into `blocks` (and, with blocks.motion, its
+// motion). Returns the largest overlap relative to the smaller radius of its contact.
 double compute_contact_forces(const ForceLoopInput& in, ForceVariant variant, ContactList& pairs, ContactList& walls,
                               ForceBlocks& blocks);
 

@@ -43,18 +43,21 @@ struct PairLawArrays {
   Vec3* normal;
   ContactSum* sum;
   bool keep_normals;  // the normal of every contact (SimParams::keep_pair_results)
+  ContactWork* work;  // per candidate, while the energy log is on (ForceLoopInput::work), else null
 
-  PairLawArrays(const Particles& p, ContactList& pc, bool keep)
+  PairLawArrays(const Particles& p, ContactList& pc, bool keep, ContactWork* work_or_null)
       : v(p.v.data()), w(p.w.data()), radius(p.radius.data()), mass(p.mass.data()), material(p.material.data()),
         fixed(p.fixed.data()), slot_i(pc.slot_i.data()), slot_j(pc.slot_j.data()), bonded(pc.bonded.data()),
-        spring(pc.spring.data()), rolling(pc.rolling.data()), dashpot(pc.dashpot.data()), normal(pc.normal.data()), sum(pc.sum.data()), keep_normals(keep) {}
+        spring(pc.spring.data()), rolling(pc.rolling.data()), dashpot(pc.dashpot.data()), normal(pc.normal.data()), sum(pc.sum.data()),
+        keep_normals(keep), work(work_or_null) {}
 };
 
-// What the law of contact k leaves: its sum (the force on i and n x f_t), and its normal where
-// a.keep_normals.
-inline void keep_pair_result(const PairLawArrays& a, long k, const Vec3& n, const Vec3& on_i, const Vec3& torque_per_radius) {
+// What the law of contact k leaves: its sum (the force on i and n x f_t), its normal where
+// a.keep_normals, its ContactWork where a.work.
+inline void keep_pair_result(const PairLawArrays& a, long k, const Vec3& n, const ContactForce& f) {
   if (a.keep_normals) a.normal[k] = n;
-  a.sum[k] = {on_i, torque_per_radius};
+  a.sum[k] = {f.on_i, n.cross(f.tangential)};
+  if (a.work) a.work[k] = {(f.normal - f.elastic) * n, f.tangential};
 }
 
 // overlap / radius where it may exceed `worst`, else 0: the division (one per contact) is done only
@@ -103,11 +106,12 @@ struct LawParams {
 // three doubles (nothing written past it), all in one loop (one loop's overhead, not several).
 template <bool Couples>
 DEM_AVX2_INLINE void keep_results(const PairLawArrays& a, const int (&k)[4], int count, const V3& spring, const V3& n,
-                                  const V3& on_i, const V3& torque_per_radius, const Lanes4& mark, const V3& couple) {
-  Lanes4 s[4], f[4], t[4], nl[4], m[4];
-  simd::per_lane(spring, s), simd::per_lane(on_i, f), simd::per_lane(torque_per_radius, t);
+                                  const LaneForce<Lanes4>& force, const Lanes4& mark) {
+  Lanes4 s[4], f[4], t[4], nl[4], m[4], wd[4], wt[4];
+  simd::per_lane(spring, s), simd::per_lane(force.on_i, f), simd::per_lane(cross(n, force.tangential), t);
   if (a.keep_normals) simd::per_lane(n, nl);
-  if constexpr (Couples) simd::per_lane(couple, m);
+  if constexpr (Couples) simd::per_lane(force.couple, m);
+  if (a.work) simd::per_lane((force.normal - force.elastic) * n, wd), simd::per_lane(force.tangential, wt);
   alignas(32) double marks[4];
   simd::store_aligned(marks, mark);
   for (int l = 0; l < count; ++l) {
@@ -117,6 +121,7 @@ DEM_AVX2_INLINE void keep_results(const PairLawArrays& a, const int (&k)[4], int
     simd::store_xyz(a.sum[k[l]].torque_per_radius.data(), t[l]);
     if (a.keep_normals) simd::store_xyz(a.normal[k[l]].data(), nl[l]);
     if constexpr (Couples) simd::store_xyz(a.rolling[k[l]].data(), m[l]);  // summed with the loads (force_loop.cpp)
+    if (a.work) simd::store_xyz(a.work[k[l]].damping.data(), wd[l]), simd::store_xyz(a.work[k[l]].tangential.data(), wt[l]);
   }
 }
 
@@ -194,10 +199,9 @@ DEM_AVX2 double pair_law(const PairLawArrays a, const MaterialTable& materials, 
     if constexpr (kRollingHistory) rolling = Tangential::in_tangent_plane(load_four(a.rolling, kl), c.n);
     Lanes4 mark = simd::gather(a.dashpot, k);
     const LaneForce<Lanes4> f = Model::evaluate_in_plane(law, c, dt, spring, bonded, mark, rolling);  // clears bonded where a bond breaks
-    const V3 torque_per_radius = cross(c.n, f.tangential);
 
     const int count = std::min(4, m - e);
-    keep_results<Model::has_rolling>(a, kl, count, spring, c.n, f.on_i, torque_per_radius, mark, f.couple);
+    keep_results<Model::has_rolling>(a, kl, count, spring, c.n, f, mark);
     if constexpr (Bonds)
       for (int l = 0; l < count; ++l) a.bonded[kl[l]] = bonded.v[l] != 0;
     // relative_overlap_if_larger's test on every lane with the group's first `worst`: where no lane

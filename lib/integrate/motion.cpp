@@ -103,6 +103,8 @@ DEM_AVX2 long move_four_at_a_time(const MotionArrays& a, const MotionConstants& 
 }  // namespace
 
 long move_particles(const MotionArrays& a, const MotionConstants& c, long first, long last) {
+  if (a.before_x)
+    for (long k = first; k < last; ++k) a.before_x[k] = a.x[k], a.before_v[k] = a.v[k], a.before_w[k] = a.w[k];
 #ifdef DEM_SIMD_LOOPS
   if (simd_loops_on()) return move_four_at_a_time(a, c, first, last);
 #endif

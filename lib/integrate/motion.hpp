@@ -32,10 +32,22 @@ struct MotionArrays {
   const std::uint8_t* fixed;  // Particles::fixed; null where no particle is held or prescribed
   const LoadSum* force;       // the net loads of the force loop (ForceBlocks)
   const LoadSum* torque;
+  // Where the state before the motion is kept (the energy ledger's x^n, v^{n-1/2}, w^{n-1/2}), or null.
+  Vec3* before_x = nullptr;
+  Vec3* before_v = nullptr;
+  Vec3* before_w = nullptr;
 };
 
-// Particles [first, last): held ones stop, prescribed ones move at their own v and w, the others
-// under their loads (all wrapped into the period).
+// A step's motion as the force loop takes it, block by block once each block's loads are summed
+// (forces/force_loop.hpp, ForceBlocks::motion).
+struct MotionStep {
+  MotionArrays arrays;
+  MotionConstants constants;
+};
+
+// Particles [first, last): their state kept where asked (before_x...), then held ones stop,
+// prescribed ones move at their own v and w, the others under their loads (all wrapped into the
+// period).
 // Returns the last particle whose new state is not finite (NaN or Inf in x, v or w makes a
 // coordinate of x + v + w NaN or Inf; so does a sum beyond 1e308: a state as broken), or -1.
 long move_particles(const MotionArrays& a, const MotionConstants& c, long first, long last);

@@ -68,18 +68,6 @@ double stored_energy_bound(const Particles& p, const MaterialTable& materials, c
   return e;
 }
 
-double wall_power(const Particles& p, const std::vector<WallGeometry>& geometry, const ContactList& wall_contacts) {
-  double power = 0;
-  for (std::size_t k = 0; k < wall_contacts.size(); ++k) {
-    if (!wall_contacts.active[k]) continue;
-    const WallGeometry& g = geometry[wall_contacts.slot_j[k]];
-    if (g.velocity.isZero(0) && g.spin.isZero(0)) continue;
-    const Vec3 x = closest_point(g, p.x[wall_contacts.slot_i[k]]);
-    power += wall_contacts.force(k).dot(g.velocity_of(x));
-  }
-  return power;
-}
-
 double prescribed_power(const Particles& p, const LoadSum* force, const LoadSum* torque) {
   double power = 0;
   for (std::size_t k = 0; k < p.size(); ++k)

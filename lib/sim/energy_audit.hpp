@@ -48,10 +48,6 @@ double stored_energy_bound(const Particles& p, const MaterialTable& materials, c
                            const std::vector<WallGeometry>& geometry, const PeriodicBox& box, const ContactList& pairs,
                            const ContactList& wall_contacts);
 
-// Power the walls deliver to the particles this step: Σ f·v_wall at the contact point [W], over the
-// active wall contacts (f the force on the particle). Walls at rest are skipped.
-double wall_power(const Particles& p, const std::vector<WallGeometry>& geometry, const ContactList& wall_contacts);
-
 // Power the prescribed particles (Particles::kPrescribed) deliver: what holds them to their motion
 // cancels their net load (force and torque, gravity included), so it delivers
 // -Σ (F·v + T·ω) over them [W].
@@ -65,8 +61,8 @@ struct EnergyBalance {
   MechanicalEnergy start;      // at the reference
   double stored0 = 0;          // stored_energy_bound at the reference [J]
   double potential_scale = 0;  // Σ m |g| a: one radius of fall for every particle [J]
-  double wall_work = 0;        // ∫ (wall_power + prescribed_power) dt since the reference [J]
-  double wall_work_abs = 0;    // ∫ |wall_power| dt [J]
+  double wall_work = 0;        // ∫ (the walls' power + prescribed_power) dt since the reference [J]
+  double wall_work_abs = 0;    // ∫ |that power| dt [J]
   MechanicalEnergy now;        // at the last check
 
   // Energy the particles hold beyond what they could have been given [J]; <= 0 in a sound run.

@@ -51,14 +51,6 @@ void EnergyLedger::from_values(const std::vector<double>& v) {
     *x = v[k++];
 }
 
-void Simulation::keep_state_before_motion() {
-  // 72 bytes per particle every step: copied by the threads, each its fixed range of particles.
-  const long n = static_cast<long>(particles.size());
-  ledger_x_.resize(n), ledger_v_.resize(n), ledger_w_.resize(n);
-#pragma omp parallel for schedule(static)
-  for (long k = 0; k < n; ++k) ledger_x_[k] = particles.x[k], ledger_v_[k] = particles.v[k], ledger_w_[k] = particles.w[k];
-}
-
 namespace {
 
 // What one contact adds to the step's sums.
@@ -137,12 +129,10 @@ template <class Normal>
 [[gnu::always_inline]] inline void account_wall_work(const PairParams& q, const Vec3& f, const Vec3& tpr, const Vec3& n, double u,
                                                      double r_eff, bool bonded, const Vec3& dv_mean, const Vec3& arm_w, double dt,
                                                      ContactTerms& t) {
-  const double rate = n.dot(dv_mean);  // du/dt over the step
-  const double f_normal = f.dot(n);    // on i along n: < 0 repulsive
   bool b = bonded;
-  const double f_el = Normal::elastic(q, u, r_eff, b);  // the elastic force at u^n (repulsive > 0)
-  t.damping.add((-f_normal - f_el) * rate * dt);
-  t.tangential_work.add(((f - f_normal * n).dot(dv_mean) + tpr.dot(arm_w)) * dt);
+  const ContactWork c = split_contact_force(f, n, Normal::elastic(q, u, r_eff, b));  // the elastic force at u^n
+  t.damping.add(c.damping.dot(dv_mean) * dt);
+  t.tangential_work.add((c.tangential.dot(dv_mean) + tpr.dot(arm_w)) * dt);
 }
 
 // One thread's share of a step's sums; summed over the threads in FixedSum's integers, so the
@@ -173,10 +163,9 @@ void Simulation::account_energy(bool any_fixed) {
   // work of the step is added every step.
   const bool measure = ledger.measure_now || !ledger.have_reference;
   const bool global_damping = params.alpha_r != 0 || params.alpha_theta != 0;
-  // Whether a particle's own terms do work this step: otherwise only a measuring step visits them.
-  const bool particles_work = has_fluid || global_damping || any_fixed;
   const bool rolling = !force_variant_ || force_variant_->rolling != RollingLaw::None;  // else no couples
-  auto account_particle = [&](std::size_t k, StepSums& s) {
+  // Inlined into its loop, so that the thread's sums and the loop's constants stay in registers.
+  auto account_particle = [&](std::size_t k, StepSums& s) __attribute__((always_inline)) {
     const double I = p.inertia(k);
     if (measure) {
       s.kin_t.add(0.5 * p.mass[k] * p.v[k].squaredNorm());
@@ -185,6 +174,13 @@ void Simulation::account_energy(bool any_fixed) {
       s.potential.add(-p.mass[k] * params.gravity.dot(unwrapped_position(k) - 0.5 * dt * p.v[k]));
     }
     const Vec3 v = v_mean(k), w = w_mean(k);
+    // eq. P33-P34, P41: the work of its pair contacts' forces, as the force loop summed them for it
+    // (ParticleWork), with its mean velocities: a contact's f · (v̄_i - v̄_j) is f · v̄_i on i and
+    // -f · v̄_j on j. Its torque's r (n x f_t) · w̄ and the couples' M · w̄ likewise.
+    const ParticleWork& pw = ledger_particle_work_[k];
+    s.c.damping.add(pw.damping.v.dot(v) * dt);
+    s.c.tangential_work.add((pw.tangential.v.dot(v) + p.radius[k] * pw.torque_per_radius.v.dot(w)) * dt);
+    if (rolling) s.c.rolling_work.add(pw.couple.v.dot(w) * dt);
     // eq. P40: the fluid's force as the force loop took it (x^n, v^{n-1/2}), times the mean velocity.
     if (has_fluid) s.fluid.add(params.fluid.force(p.radius[k], p.void_fraction[k], x0[k], v0[k], params.gravity).dot(v) * dt);
     const std::uint8_t fixed = any_fixed ? p.fixed[k] : 0;
@@ -195,23 +191,14 @@ void Simulation::account_energy(bool any_fixed) {
       s.global.add((params.alpha_r * p.mass[k] * v.squaredNorm() + params.alpha_theta * I * w.squaredNorm()) * dt);
     }
   };
-  const bool breaks = !ledger_pair_bonded_.empty() || !ledger_wall_bonded_.empty();
-  const ContactWork* contact_work = ledger_contact_work_.data();  // the force loop's, per contact
+  // Some bond broke this step: its count fell (the force loop never makes one).
+  const bool breaks = (!ledger_pair_bonded_.empty() || !ledger_wall_bonded_.empty()) && bond_count() != ledger_bond_count_;
   auto account_pair = [&](auto normal, std::size_t k, ContactTerms& t) {
     const bool broke = breaks && k < ledger_pair_bonded_.size() && ledger_pair_bonded_[k] && !pairs_.bonded[k];
-    if (!pairs_.active[k] && !broke) return;
-    const int i = pairs_.slot_i[k], j = pairs_.slot_j[k];
-    if (pairs_.active[k]) {
-      // eq. P33-P34, P41: the forces the force loop left (ContactWork) with the mean velocities,
-      // f_d n · (v̄_i - v̄_j) = f_d u̇, and the rest of the contact's power, the couple's on its own.
-      const ContactWork& c = contact_work[k];
-      const Vec3 dv = v_mean(i) - v_mean(j);
-      t.damping.add(c.damping.dot(dv) * dt);
-      t.tangential_work.add((c.tangential.dot(dv) + pairs_.sum[k].torque_per_radius.dot(p.radius[i] * w_mean(i) + p.radius[j] * w_mean(j))) * dt);
-      if (rolling) t.rolling_work.add(pairs_.rolling[k].dot(w_mean(i) - w_mean(j)) * dt);
-    }
-    if (!broke && !measure) [[likely]]
+    // Its work this step is its particles' (account_particle); what it holds, where it broke or is measured.
+    if (!broke && !(measure && pairs_.active[k])) [[likely]]
       return;
+    const int i = pairs_.slot_i[k], j = pairs_.slot_j[k];
     const Vec3 d = periodic.any() ? separation<true>(periodic, x0[i], x0[j]) : separation<false>(periodic, x0[i], x0[j]);
     const double dist = d.norm();
     const Vec3 n = d / dist;
@@ -251,14 +238,14 @@ void Simulation::account_energy(bool any_fixed) {
   // Each thread its own sums over fixed ranges of the particles and contacts (a term out of range
   // is kept, not thrown, and reported by value() after the region).
   StepSums sums;
-  const long pair_count = static_cast<long>(pairs_.size()), wall_count = static_cast<long>(walls_.size());
-  const long particle_count = measure || particles_work ? count : 0;
+  // A pair contact is visited only where a bond broke or what it holds is measured.
+  const long pair_count = breaks || measure ? static_cast<long>(pairs_.size()) : 0, wall_count = static_cast<long>(walls_.size());
   auto account_all = [&](auto normal) {
 #pragma omp parallel
     {
       StepSums mine;
 #pragma omp for schedule(static) nowait
-      for (long k = 0; k < particle_count; ++k) account_particle(k, mine);
+      for (long k = 0; k < count; ++k) account_particle(k, mine);  // each step: its pair contacts' work (ParticleWork)
 #pragma omp for schedule(static) nowait
       for (long k = 0; k < pair_count; ++k) account_pair(normal, k, mine.c);
 #pragma omp for schedule(static) nowait

@@ -2,10 +2,10 @@
 // The energy balance of a run (docs/physics.md eq. P29-P45), kept only when asked (run-stage's
 // energy log): each step, after the motion, a pass over the particles and contacts adds what the
 // step dissipated, released and put in, and, at the steps whose figures are read (measure_now),
-// measures what the particles and contacts hold. For the pair contacts' work the force loop leaves
-// each contact's dashpot and tangential forces (forces/force_loop.hpp, ContactWork), so that the
-// pass takes only the velocities: a run that does not ask pays one test per step and one per
-// chunk of the force loop.
+// measures what the particles and contacts hold. For the pair contacts' work each contact's law
+// leaves its dashpot and tangential forces (contact/kinematics.hpp, ContactWork), so that the pass
+// takes only the velocities: a run that does not ask pays one test per step and one per group of
+// contacts of the force loop.
 //
 // The scheme follows the integrator (leapfrog): the force at step n acts on the velocity between
 // the half steps n-1/2 and n+1/2, so the kinetic energy changes by exactly F · (v^{n-1/2} +

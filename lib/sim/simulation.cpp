@@ -21,15 +21,30 @@
 
 namespace dem {
 
+namespace {
+bool motion_apart_for_tests = false;  // set_motion_apart_for_tests
+}  // namespace
+
+void set_motion_apart_for_tests(bool apart) { motion_apart_for_tests = apart; }
+
 void Simulation::advance() {
   if (params.sort_every > 0 && step % params.sort_every == 0 && static_cast<long>(particles.size()) >= params.sort_min_particles)
     sort_storage();
-  compute_forces();
   const bool any_fixed = particles.any_fixed();
-  // The fluid does work the energy balance does not hold (docs/physics.md, "Fluid drag"): no audit then.
-  if (params.max_energy_gain > 0 && !params.fluid.on()) audit_energy(any_fixed && particles.any_prescribed());
-  if (ledger.on) keep_state_before_motion();
-  integrate(any_fixed);
+  const bool any_prescribed = any_fixed && particles.any_prescribed();
+  const bool audit = energy_check_on();
+  // The fibres' forces are added after the force loop, and the energy check's measuring steps read
+  // the state before the motion: otherwise the motion joins the force loop (ForceBlocks::motion),
+  // each block's state kept for the energy ledger as it moves.
+  if (fibres.empty() && !(audit && energy_check_measures_now()) && !motion_apart_for_tests) {
+    const MotionStep motion = motion_step(any_fixed, ledger.on);
+    compute_loads(&motion);
+    if (audit) audit_energy(any_prescribed);  // the work of the step only: the walls' from the force loop
+  } else {
+    compute_forces();
+    if (audit) audit_energy(any_prescribed);
+    integrate(any_fixed, ledger.on);
+  }
   if (ledger.on) account_energy(any_fixed);
   if (!fibres.empty()) rotate_ties(fibres, particles, dt);  // the ties turn with their particles
   time += dt;
@@ -37,22 +52,31 @@ void Simulation::advance() {
   if (has_bonds_) count_bonds();  // bonds only ever break: stop paying once all are gone
 }
 
-void Simulation::compute_forces() {
+void Simulation::compute_forces() { compute_loads(nullptr); }
+
+void Simulation::compute_loads(const MotionStep* motion) {
   find_contacts();
-  if (ledger.on && has_bonds_) ledger_pair_bonded_ = pairs_.bonded, ledger_wall_bonded_ = walls_.bonded;
+  if (ledger.on && has_bonds_) ledger_pair_bonded_ = pairs_.bonded, ledger_wall_bonded_ = walls_.bonded, ledger_bond_count_ = bond_count();
   const bool any_fixed = particles.any_fixed();
-  if (ledger.on) ledger_contact_work_.resize(pairs_.size());  // the pair contacts' work for the energy ledger
+  if (ledger.on) {  // the pair contacts' work for the energy ledger, per contact and per particle
+    ledger_contact_work_.resize(pairs_.size());
+    ledger_particle_work_.resize(particles.size());
+  }
   const ForceLoopInput in{particles, materials, walls, wall_geometry_, wall_runs_, wall_run_order_, wall_block_first_, periodic,
                           any_fixed, has_bonds_, dt, params.keep_pair_results,
                           ledger.on ? ledger_contact_work_.data() : nullptr};
   if (indexed_block_ != params.load_block) index_contacts_per_particle();
+  const bool sum_wall_power = walls_move_ && energy_check_on();  // the energy check's (audit_energy)
+  if (sum_wall_power) wall_power_.assign(block_first_.size() - 1, 0.0);  // per load block (ForceBlocks::wall_power)
   block_force_.resize(particles.size());
   block_torque_.resize(particles.size());
   const bool fluid = params.fluid.on();
   if (fluid) update_fluid_grains();
   const BodyForces body{params.gravity, fluid ? &params.fluid : nullptr, &fluid_grains_};
   ForceBlocks loads{params.load_block, block_first_, block_needs_, needed_from_, by_key_start_, by_key_split_, by_key_, force_times_,
-                    block_done_,       touched_,       ++force_epoch_, body, simd_loops_on(), block_force_, block_torque_};
+                    block_done_,       touched_,       ++force_epoch_, body, simd_loops_on(), block_force_, block_torque_,
+                    ledger.on ? ledger_particle_work_.data() : nullptr, sum_wall_power ? wall_power_.data() : nullptr,
+                    motion};
   force_variant_ = choose_force_variant(materials, has_bonds());
   const double worst_overlap = compute_contact_forces(in, force_variant_, pairs_, walls_, loads);
   // Fibres: a force source after the contacts and body forces (one serial loop over segments).
@@ -63,6 +87,7 @@ void Simulation::compute_forces() {
   pair_results_kept_ = params.keep_pair_results;
   contacts_modified();
   if (worst_overlap > params.max_overlap) report_overlap(worst_overlap);
+  if (loads.not_finite >= 0) report_not_finite(loads.not_finite);
 }
 
 void Simulation::update_fluid_grains() {
@@ -127,26 +152,35 @@ void Simulation::set_contacts(ContactList pairs, ContactList walls) {
 }
 
 void Simulation::report_overlap(double worst) const {
-  // Name the contact(s) with that overlap (recomputed as the force loop does); runs once, on failure.
+  // Name the contact(s) with the largest overlap, recomputed as the force loop does (where the
+  // step's motion joined the force loop, the particles have moved since: then it names those with
+  // the largest overlap after it, most often the same); runs once, on failure.
   const Particles& p = particles;
   std::ostringstream m;
   m << "overlap of " << worst * 100 << " % of the radius (limit simulation.max_overlap = " << params.max_overlap * 100
     << " %) at step " << step << " (t = " << time << " s), ";
   const KeyOrder& by_key = pair_key_order();
+  const auto pair_overlap = [&](int k) {
+    const int i = pairs_.slot_i[k], j = pairs_.slot_j[k];
+    return (p.radius[i] + p.radius[j] - separation(p, periodic, i, j).norm()) / std::min(p.radius[i], p.radius[j]);
+  };
+  const auto wall_overlap = [&](std::size_t k) {
+    const int i = walls_.slot_i[k];
+    return (p.radius[i] - (closest_point(wall_geometry_[walls_.slot_j[k]], p.x[i]) - p.x[i]).norm()) / p.radius[i];
+  };
+  double largest = -std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < pairs_.size(); ++k)
+    if (pairs_.active[k]) largest = std::max(largest, pair_overlap(static_cast<int>(k)));
+  for (std::size_t k = 0; k < walls_.size(); ++k)
+    if (walls_.active[k]) largest = std::max(largest, wall_overlap(k));
   for (std::size_t r = 0; r < pairs_.size(); ++r) {
     const int k = key_rank_to_position(by_key, r);
-    const int i = pairs_.slot_i[k], j = pairs_.slot_j[k];
-    const double u = p.radius[i] + p.radius[j] - separation(p, periodic, i, j).norm();
-    if (pairs_.active[k] && u / std::min(p.radius[i], p.radius[j]) == worst)
-      m << "between particles " << p.id[i] << " and " << p.id[j] << ", ";
+    if (pairs_.active[k] && pair_overlap(k) == largest)
+      m << "between particles " << p.id[pairs_.slot_i[k]] << " and " << p.id[pairs_.slot_j[k]] << ", ";
   }
-  for (std::size_t k = 0; k < walls_.size(); ++k) {
-    const int i = walls_.slot_i[k];
-    const WallGeometry& g = wall_geometry_[walls_.slot_j[k]];
-    const Vec3 c = closest_point(g, p.x[i]);
-    if (walls_.active[k] && (p.radius[i] - (c - p.x[i]).norm()) / p.radius[i] == worst)
-      m << "between particle " << p.id[i] << " and wall " << walls[walls_.slot_j[k]].name << ", ";
-  }
+  for (std::size_t k = 0; k < walls_.size(); ++k)
+    if (walls_.active[k] && wall_overlap(k) == largest)
+      m << "between particle " << p.id[walls_.slot_i[k]] << " and wall " << walls[walls_.slot_j[k]].name << ", ";
   m << "with dt = " << dt << " s against the critical " << critical_time_step()
     << " s of docs/physics.md eq. P5";
   throw PhysicsError(m.str(), "lower the time step (frac), raise the stiffness kn, or lower the load or impact speed");
@@ -185,10 +219,16 @@ std::size_t Simulation::bond_present_contacts(bool walls_too, double gap) {
   return n;
 }
 
-void Simulation::count_bonds() {
-  has_bonds_ = false;
-  for (std::uint8_t b : pairs_.bonded) has_bonds_ = has_bonds_ || b;
-  for (std::uint8_t b : walls_.bonded) has_bonds_ = has_bonds_ || b;
+void Simulation::count_bonds() { has_bonds_ = bond_count() > 0; }
+
+long Simulation::bond_count() const {
+  // The sum of the flags, which falls whenever one is cleared: a plain sum of bytes, vectorised.
+  const auto sum = [](const std::vector<std::uint8_t>& flags) {
+    long n = 0;
+    for (std::uint8_t b : flags) n += b;
+    return n;
+  };
+  return sum(pairs_.bonded) + sum(walls_.bonded);
 }
 
 void Simulation::update_wall_geometry() {
@@ -365,12 +405,14 @@ void Simulation::index_contacts_per_particle() {
   }
 }
 
-void Simulation::integrate(bool any_fixed) {
+MotionStep Simulation::motion_step(bool any_fixed, bool keep_state) {
   // eq. 2.38-2.47: v^{n+1/2} = (a v^{n-1/2} + acc dt) b, a = 1 - alpha dt/2, b = 1/(1 + alpha dt/2).
   const MotionConstants c{1 - params.alpha_r * dt / 2, 1 / (1 + params.alpha_r * dt / 2), 1 - params.alpha_theta * dt / 2,
                           1 / (1 + params.alpha_theta * dt / 2), dt, periodic};
   Particles& p = particles;
-  const MotionArrays a{.x = p.x.data(),
+  block_force_.resize(p.size());  // the loads the force loop sums (compute_loads)
+  block_torque_.resize(p.size());
+  MotionArrays a{.x = p.x.data(),
                        .v = p.v.data(),
                        .w = p.w.data(),
                        .image = p.image.data(),
@@ -379,7 +421,18 @@ void Simulation::integrate(bool any_fixed) {
                        .fixed = any_fixed ? p.fixed.data() : nullptr,
                        .force = block_force_.data(),
                        .torque = block_torque_.data()};
-  const long n = static_cast<long>(p.size());
+  if (keep_state) {  // the energy ledger's x^n, v^{n-1/2}, w^{n-1/2}
+    ledger_x_.resize(p.size()), ledger_v_.resize(p.size()), ledger_w_.resize(p.size());
+    a.before_x = ledger_x_.data(), a.before_v = ledger_v_.data(), a.before_w = ledger_w_.data();
+  }
+  return {a, c};
+}
+
+void Simulation::integrate(bool any_fixed, bool keep_state) {
+  const MotionStep step_motion = motion_step(any_fixed, keep_state);
+  const MotionArrays a = step_motion.arrays;
+  const MotionConstants c = step_motion.constants;
+  const long n = static_cast<long>(particles.size());
   long bad = -1;
   // Each thread takes a contiguous run of blocks of particles (load_block slots each) sized by
   // their times at the last step (core/block_times.hpp): close to its run in the force loop, so its
@@ -402,17 +455,27 @@ void Simulation::integrate(bool any_fixed) {
       integrate_times_.record(b, tb);
     }
   }
-  if (bad >= 0) {
-    const Particles& p = particles;
-    std::ostringstream m;
-    m << "non-finite state at step " << step << " (t = " << time << " s) for particle id " << p.id[bad] << ", with dt = " << dt
-      << " s against the critical " << critical_time_step() << " s of docs/physics.md eq. P5";
-    throw PhysicsError(m.str(), "check the time step and the stiffnesses");
-  }
+  if (bad >= 0) report_not_finite(bad);
+}
+
+void Simulation::report_not_finite(long slot) const {
+  std::ostringstream m;
+  m << "non-finite state at step " << step << " (t = " << time << " s) for particle id " << particles.id[slot] << ", with dt = " << dt
+    << " s against the critical " << critical_time_step() << " s of docs/physics.md eq. P5";
+  throw PhysicsError(m.str(), "check the time step and the stiffnesses");
+}
+
+// The fluid does work the energy balance does not hold (docs/physics.md, "Fluid drag"): no check then.
+bool Simulation::energy_check_on() const { return params.max_energy_gain > 0 && !params.fluid.on(); }
+
+bool Simulation::energy_check_measures_now() const {
+  const EnergyBalance& b = energy_;
+  return !b.valid || b.particles != particles.size() || (step - b.step0) % kEnergyCheckEvery == 0;
 }
 
 void Simulation::audit_energy(bool any_prescribed) {
-  // Called with the forces at x^n computed and the velocities still at n-1/2 (sim/energy_audit.hpp).
+  // Called with the forces at x^n computed; on the steps it measures (energy_check_measures_now),
+  // before the motion: the velocities still at n-1/2 (sim/energy_audit.hpp).
   EnergyBalance& b = energy_;
   if (!b.valid || b.particles != particles.size()) {
     b = EnergyBalance{};
@@ -425,12 +488,16 @@ void Simulation::audit_energy(bool any_prescribed) {
     for (std::size_t k = 0; k < particles.size(); ++k) b.potential_scale += particles.mass[k] * params.gravity.norm() * particles.radius[k];
     return;
   }
-  // Static walls do no work: wall_power would skip every contact, serially.
-  double work = walls_move_ ? wall_power(particles, wall_geometry_, walls_) * dt : 0.0;
-  if (any_prescribed) work += prescribed_power(particles, block_force_.data(), block_torque_.data()) * dt;
+  // The walls' power as the force loop summed it, block by block (static walls do none), and what
+  // holds the prescribed particles (their v and w are their own, before the motion and after it).
+  double power = 0;
+  if (walls_move_)
+    for (double block : wall_power_) power += block;
+  if (any_prescribed) power += prescribed_power(particles, block_force_.data(), block_torque_.data());
+  const double work = power * dt;
   b.wall_work += work;
   b.wall_work_abs += std::abs(work);
-  if ((step - b.step0) % kEnergyCheckEvery != 0) return;
+  if (!energy_check_measures_now()) return;
   b.now = mechanical_energy(particles, params.gravity, periodic);
   if (b.excess() > params.max_energy_gain * b.scale()) report_energy_gain();
 }

@@ -63,6 +63,10 @@ struct WallLoad {
   int contacts = 0;
 };
 
+// Tests only: every step takes its motion apart from the force loop, as the energy check's
+// measuring steps do (Simulation::advance), so that a test compares both ways of taking a step.
+void set_motion_apart_for_tests(bool apart);
+
 class Simulation {
  public:
   Particles particles;
@@ -81,7 +85,9 @@ class Simulation {
   void account_inserted(std::size_t first);
 
   // One explicit step: contacts and forces at x^n with v^{n-1/2} (compute_forces), then
-  // eq. 2.38-2.47.
+  // eq. 2.38-2.47. Where nothing reads the state between the two (the energy check on most steps,
+  // no energy ledger, no fibres), each block of particles moves within the force loop, as soon as
+  // its loads are summed (ForceBlocks::motion): the same bits, one pass over the particles less.
   void advance();
   // The first half of a step, without the motion: the contacts at x^n and their forces from
   // v^{n-1/2} and the stored history, readable afterwards through pair_contacts() and
@@ -149,8 +155,8 @@ class Simulation {
   // force) per wall element this step.
   std::vector<WallLoad> wall_loads(bool torques = false) const;
   const std::vector<WallGeometry>& wall_geometry() const { return wall_geometry_; }
-  // Particle slot k's net load of the last step (contacts, walls and gravity) [N]; zero before
-  // the first step.
+  // Particle slot k's net load of the last step or compute_forces() (contacts, walls and gravity) [N];
+  // zero before the first.
   Vec3 net_force(std::size_t k) const { return k < block_force_.size() ? block_force_[k].v : Vec3::Zero(); }
 
  private:
@@ -164,13 +170,22 @@ class Simulation {
   void find_contacts();
   void count_bonds();
   void index_contacts_per_particle();
-  void integrate(bool any_fixed);
-  // The energy ledger's pass (sim/energy_ledger.cpp): before the motion, keep x^n, v^{n-1/2}, w;
-  // after it, account the step.
-  void keep_state_before_motion();
+  // compute_forces(), and with `motion` the step's motion too (ForceBlocks::motion).
+  void compute_loads(const MotionStep* motion);
+  // Whether the energy check runs (simulation.max_energy_gain), and whether this step is one where
+  // it measures the particles' energy (before the motion: the motion stays out of the force loop).
+  bool energy_check_on() const;
+  bool energy_check_measures_now() const;
+  // The step's motion; with keep_state, the state before it kept for the energy ledger.
+  MotionStep motion_step(bool any_fixed, bool keep_state);
+  void integrate(bool any_fixed, bool keep_state);
+  [[noreturn]] void report_not_finite(long slot) const;
+  // The energy ledger's pass (sim/energy_ledger.cpp) after the motion, which kept x^n, v^{n-1/2}
+  // and w^{n-1/2} (motion_step).
   void account_energy(bool any_fixed);
 
   bool has_bonds_ = false;
+  long bond_count() const;  // the sum of the pair and wall contacts' bonded flags (0: none bonded)
   bool pair_results_kept_ = true;
   EnergyBalance energy_;
   NeighbourList neighbours_;
@@ -199,9 +214,10 @@ class Simulation {
   long indexed_block_ = 0;         // load_block of block_first_
   BlockTimes force_times_, integrate_times_;  // per load block, its time in each loop at the last step
   std::vector<long> block_done_;  // per load block, the epoch of the force loop that last computed it
-  std::vector<long> touched_;     // per slot, the epoch of the force loop in which it last had a pair contact
+  std::vector<std::uint8_t> touched_;  // per slot, the force loop's stamp where it last had a pair contact (ForceBlocks)
   long force_epoch_ = 0;          // force loops run (ForceBlocks::epoch)
   std::vector<LoadSum> block_force_, block_torque_;  // per slot, its net load this step (ForceBlocks)
+  std::vector<double> wall_power_;  // per load block, the walls' power this step where the energy check needs it
   std::vector<int> wall_runs_;  // first wall candidate of each particle, then the end
   std::vector<int> wall_run_order_, wall_block_first_;  // ForceLoopInput's
   VoidFractionScratch void_scratch_;  // working storage of the fluid's void fractions
@@ -211,11 +227,14 @@ class Simulation {
   FluidGrains fluid_grains_;
   double fluid_grains_for_[2] = {0, 0};
   // While ledger.on: the state before the motion, and the bonds before the force loop (those that
-  // broke this step release their energy).
+  // broke this step release their energy) and their count (none broke where it is unchanged: bonds
+  // only break within a step).
   std::vector<Vec3> ledger_x_, ledger_v_, ledger_w_;
   std::vector<std::uint8_t> ledger_pair_bonded_, ledger_wall_bonded_;
+  long ledger_bond_count_ = 0;
   std::vector<std::uint8_t> ledger_fibre_broken_;  // the fibre segments broken before the force loop
-  std::vector<ContactWork> ledger_contact_work_;  // while ledger.on: the force loop's, per pair candidate
+  std::vector<ContactWork> ledger_contact_work_;  // while ledger.on: what each pair contact's law left, per candidate
+  std::vector<ParticleWork> ledger_particle_work_;  // while ledger.on: the force loop's, per slot
   std::optional<ModelChoice> force_variant_;  // the force loop's this step (force_loop.hpp's ForceVariant)
 };
 

@@ -102,6 +102,16 @@ DEM_LANE bool all(Mask4 where) { return (where.v[0] & where.v[1] & where.v[2] & 
 // A mask from four flags, and four values.
 DEM_LANE Mask4 mask4(bool a, bool b, bool c, bool d) { return {i64x4{-long{a}, -long{b}, -long{c}, -long{d}}}; }
 DEM_LANE Lanes4 lanes4(double a, double b, double c, double d) { return f64x4{a, b, c, d}; }
+// Four consecutive doubles read or written at any address (copied bytes: no alignment or aliasing
+// assumed): one unaligned load or store in a four-wide caller.
+DEM_LANE Lanes4 load4(const double* p) {
+  f64x4 v;
+  __builtin_memcpy(&v, p, sizeof v);
+  return v;
+}
+DEM_LANE void store4(double* p, Lanes4 a) { __builtin_memcpy(p, &a.v, sizeof a.v); }
+// Lanes 1, 2, 3 moved down to 0, 1, 2 (lane 3 keeps its own).
+DEM_LANE Lanes4 shift_down(Lanes4 a) { return __builtin_shufflevector(a.v, a.v, 1, 2, 3, 3); }
 
 #undef DEM_LANE
 #endif

@@ -1,6 +1,6 @@
 # Impact (thesis §4.2): block B2 (1,280 spheres) thrown at 5 m/s into the bonded block B1 (9,594).
 #   make -f Makefile.cases impact   cast both blocks (about 1 minute on two cores), run the impact
-#                                   (20,000 steps of 6.43e-6 s; 13 s on two threads), fragments, broken bonds,
+#                                   (20,000 steps of 6.43e-6 s; about 20 s on two threads with the energy log), fragments, broken bonds,
 #                                   the energy balance, and PNG renders of four instants (dem-render
 #                                   under xvfb-run)
 IMP_DIR := $(OUT)/impact
