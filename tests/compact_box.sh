@@ -48,3 +48,19 @@ grep -q "^target_porosity = 0.5" "$tmp/porosity.toml"
 "$bin/compact" --scene "$tmp/porosity.toml" --in "$tmp/fill.h5" --out "$tmp/porous.h5" --threads 1 --quiet | tee "$tmp/porosity.log"
 awk '/porosity .* after relaxation/ { p = $3; found = 1 } END { exit !(found && p <= 0.5 && p > 0.45) }' "$tmp/porosity.log" \
   || { echo "the porosity target of 0.5 was not reached or overshot"; exit 1; }
+# A target not reached in max_time: exit 3, no output, and the message says which criterion held it
+# back (each wall's stress and the bed's kinetic-energy ratio against what each needs).
+sed 's/^max_time = 1.0/max_time = 0.01/' "$scene" > "$tmp/short.toml"
+grep -q "^max_time = 0.01" "$tmp/short.toml"
+set +e
+"$bin/compact" --scene "$tmp/short.toml" --in "$tmp/fill.h5" --out "$tmp/short.h5" --threads 1 --quiet > "$tmp/short.log" 2>&1
+rc=$?
+set -e
+cat "$tmp/short.log"
+[ $rc -eq 3 ] || { echo "compact short of its target: exit $rc, 3 expected"; exit 1; }
+[ ! -e "$tmp/short.h5" ] || { echo "compact short of its target wrote its output"; exit 1; }
+for w in xmin xmax ymin ymax zmin zmax; do
+  grep -q "walls:.* box\.$w [-0-9.e+]* Pa[ ,]" "$tmp/short.log" || { echo "the message does not give box.$w's stress"; exit 1; }
+done
+grep -q "within 2 % of 20000 Pa needed), KE ratio [0-9.e+-]* (below compact.settle.ke_ratio = 0.0001 needed)" "$tmp/short.log" \
+  || { echo "the message does not give the kinetic-energy ratio against its criterion"; exit 1; }

@@ -235,7 +235,16 @@ void compact(const GenerateOptions& o) {
   if (!done) {
     std::ostringstream m;
     m << "compact: target not reached within compact.max_time = " << c.max_time << " s (stress " << stress()
-      << " Pa, porosity " << porosity(sim) << "); raise max_time or speed, or check the target";
+      << " Pa, porosity " << porosity(sim) << ")";
+    if (c.target_stress > 0) {  // which criterion held it back: each wall's stress, and the bed's motion
+      const std::vector<WallLoad> now = sim.wall_loads();
+      m << "; walls:";
+      for (std::size_t k = 0; k < servos.size(); ++k)
+        m << (k ? ", " : " ") << sim.walls[servos[k].elements[0]].name << " " << servos[k].stress(now) << " Pa";
+      m << " (within 2 % of " << c.target_stress << " Pa needed), KE ratio " << kinetic_ratio(sim) << " (below compact.settle.ke_ratio = "
+        << c.settle.ke_ratio << " needed)";
+    }
+    m << "; raise max_time or speed, or check the target";
     throw InputError(m.str());
   }
   for (const ServoGroup& g : servos) sim.walls[g.elements[0]].start_motion(WallMotion{}, sim.time);
