@@ -180,5 +180,25 @@ TEST(Container, CutAtTheTopOfTheSpheresAndWallsInsideTheBedIgnored) {
   }
 }
 
+// A plane that cuts the centres' bounding box but has every centre on its inner side still bounds
+// them (the corners' shortcut does not answer; the pass over the centres does): an oblique wall
+// x + y = 0.025 across the corner of a 0.02 m box, three spheres whose box reaches (0.015, 0.015)
+// beyond it but whose centres all lie within; the side wall x = 0.02 keeps y <= 0.005 of its
+// height. A fourth sphere beyond the plane makes it bound nothing: the full face again.
+TEST(Container, PlaneAcrossTheCentresBoxButBehindEveryCentre) {
+  const Vec3 lo(0, 0, 0), hi(0.02, 0.02, 0.01);
+  std::vector<Wall> walls = box_walls(lo, hi);
+  walls.push_back(Wall{"corner", 0, {Vec3(0.005, 0.02, 0), Vec3(0.02, 0.005, 0), Vec3(0.02, 0.005, 0.01), Vec3(0.005, 0.02, 0.01)}, {}});
+  Particles p;
+  p.add(0, Vec3(0.005, 0.005, 0.005), 1e-3, 1000, 0);
+  p.add(1, Vec3(0.015, 0.005, 0.005), 1e-3, 1000, 0);
+  p.add(2, Vec3(0.005, 0.015, 0.005), 1e-3, 1000, 0);
+  Container c(walls, 0, p, Vec3::Zero());
+  EXPECT_NEAR(c.wall_area(1), 0.005 * 0.01, 1e-17) << "box.xmax, cut by the corner wall";
+  p.add(3, Vec3(0.0145, 0.0145, 0.005), 1e-3, 1000, 0);  // x + y = 0.029: beyond the corner wall
+  Container beyond(walls, 0, p, Vec3::Zero());
+  EXPECT_NEAR(beyond.wall_area(1), 0.02 * 0.01, 1e-17) << "box.xmax: the corner wall has a centre beyond it";
+}
+
 }  // namespace
 }  // namespace dem

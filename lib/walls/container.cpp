@@ -151,7 +151,11 @@ Polygon ConvexPolytope::face_in(const HalfSpace& h) const {
 
 Container::Container(const std::vector<Wall>& walls, double t, const Particles& p, const Vec3& gravity)
     : walls_(walls), t_(t), particles_(p), bounds_(walls.size(), -1), planes_(walls.size()), have_plane_(walls.size(), 0) {
-  for (const Vec3& x : p.x) centroid_ += x;
+  for (const Vec3& x : p.x) {
+    centroid_ += x;
+    lo_ = lo_.cwiseMin(x);
+    hi_ = hi_.cwiseMax(x);
+  }
   if (p.size() > 0) centroid_ /= static_cast<double>(p.size());
   if (gravity.norm() > 0 && p.size() > 0) {
     // Keep {x : up·x <= top}, up = -g/|g|: as a half-space, normal g/|g| and offset -top.
@@ -180,6 +184,16 @@ bool Container::bounds(std::size_t k) {
   if (bounds_[k] < 0) {
     const HalfSpace& h = plane(k);
     bounds_[k] = 1;
+    // The distance is affine, so over the centres' box it is least at a corner: a margin above the
+    // rounding at every corner answers for every centre without a pass over them (a servo asks
+    // every step).
+    const double margin = 1e-12 * (std::abs(h.offset) + std::max(lo_.cwiseAbs().maxCoeff(), hi_.cwiseAbs().maxCoeff()));
+    bool corners_inside = particles_.size() > 0;
+    for (int c = 0; c < 8 && corners_inside; ++c) {
+      const Vec3 corner((c & 1) ? hi_.x() : lo_.x(), (c & 2) ? hi_.y() : lo_.y(), (c & 4) ? hi_.z() : lo_.z());
+      corners_inside = h.distance(corner) > margin;
+    }
+    if (corners_inside) return true;
     for (const Vec3& x : particles_.x)
       if (h.distance(x) < 0) {
         bounds_[k] = 0;

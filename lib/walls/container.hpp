@@ -7,6 +7,7 @@
 //
 // Two parts: plain convex geometry (half-spaces, polygon clipping, a convex polytope clipped plane
 // by plane), and Container, which applies it to walls and particles at one moment.
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -90,6 +91,7 @@ class Container {
   double t_;
   const Particles& particles_;
   Vec3 centroid_ = Vec3::Zero();
+  Vec3 lo_ = Vec3::Constant(INFINITY), hi_ = Vec3::Constant(-INFINITY);  // the centres' box
   bool has_top_ = false;  // under gravity, with particles
   HalfSpace top_;         // below the top of the highest sphere
   std::vector<signed char> bounds_;  // per wall: -1 not yet known, 0 no, 1 yes
