@@ -32,16 +32,18 @@ q="--quiet"
 "$bin/run-stage" --scene "$scene" --stage load --in "$tmp/compacted.h5" --out "$tmp/loaded.h5" $q
 "$bin/run-stage" --scene "$scene" --stage cement --in "$tmp/loaded.h5" --out "$tmp/cemented.h5" $q
 "$bin/run-stage" --scene "$scene" --stage drill --in "$tmp/cemented.h5" --out "$tmp/drilled.h5" $q
-"$bin/post-macro" --in "$tmp/drilled.h5" --reference "$tmp/cemented.h5" --vtk "$tmp/drilled.vtu" $q
-"$py" "$src/../scripts/well_report.py" --stress "$tmp/drilled.vtu" --bonds-made "$tmp/cemented.h5" --bonds-now "$tmp/drilled.h5" \
-  --centre 0.14,0.14 --radius 0.035 --sigma0 18e6 --outer 0.126 --bin 0.014 --prefix "$tmp/drilled"
+# The stress around the well against Kirsch, the broken bonds and the displacement: report NOW CEMENTED.
+report() {
+  "$bin/post-macro" --in "$tmp/$1.h5" --reference "$tmp/$2.h5" --vtk "$tmp/$1.vtu" $q
+  "$py" "$src/../scripts/well_report.py" --stress "$tmp/$1.vtu" --bonds-made "$tmp/$2.h5" --bonds-now "$tmp/$1.h5" \
+    --centre 0.14,0.14 --radius 0.035 --sigma0 18e6 --outer 0.126 --bin 0.014 --prefix "$tmp/$1"
+}
+report drilled cemented
 sed -e 's/^cohesion = 635.0 .*/cohesion = 1.0e9/' -e 's/^tensile_strength = 1.3e3 .*/tensile_strength = 1.0e9/' "$scene" > "$tmp/elastic.toml"
 [ "$(grep -c '^cohesion = 1.0e9$\|^tensile_strength = 1.0e9$' "$tmp/elastic.toml")" = 2 ] || { echo "FAIL: small.toml's bond strengths not found"; exit 1; }
 "$bin/run-stage" --scene "$tmp/elastic.toml" --stage cement --in "$tmp/loaded.h5" --out "$tmp/elastic_cemented.h5" $q
 "$bin/run-stage" --scene "$tmp/elastic.toml" --stage drill --in "$tmp/elastic_cemented.h5" --out "$tmp/elastic.h5" $q
-"$bin/post-macro" --in "$tmp/elastic.h5" --reference "$tmp/elastic_cemented.h5" --vtk "$tmp/elastic.vtu" $q
-"$py" "$src/../scripts/well_report.py" --stress "$tmp/elastic.vtu" --bonds-made "$tmp/elastic_cemented.h5" --bonds-now "$tmp/elastic.h5" \
-  --centre 0.14,0.14 --radius 0.035 --sigma0 18e6 --outer 0.126 --bin 0.014 --prefix "$tmp/elastic"
+report elastic elastic_cemented
 "$bin/run-stage" --scene "$scene" --stage produce --in "$tmp/drilled.h5" --out "$tmp/produced.h5" $q
 "$bin/run-stage" --scene "$scene" --stage produce_dry --in "$tmp/drilled.h5" --out "$tmp/dry.h5" $q
 "$py" - "$tmp" <<'PY'
