@@ -14,7 +14,8 @@
 #    fraction beyond 2.5a. (Where it yields, the hoop stress no longer peaks at the wall but at the
 #    yielded zone's edge: README.md.)
 # 4. Kirsch (docs/physics.md eq. P80-P83) where the rock stays elastic: the same loaded slab cemented
-#    with bonds that cannot break (cohesion and tensile strength 1e9 N) and drilled; every bin at
+#    with bonds that do not break (cohesion and tensile strength 1e5 N: far above the forces carried,
+#    and near enough that the neighbour search's bond reach stays under a millimetre) and drilled; every bin at
 #    r >= 2a within P83 of Kirsch with sigma0 = 18 MPa, and no bond broken. The thesis's rock misses
 #    it (2 of those 3 bins): it yields beyond 2a at 18 MPa (README.md, "Measured"), reported by
 #    scripts/well_report.py, not checked.
@@ -39,8 +40,8 @@ report() {
     --centre 0.14,0.14 --radius 0.035 --sigma0 18e6 --outer 0.126 --bin 0.014 --prefix "$tmp/$1"
 }
 report drilled cemented
-sed -e 's/^cohesion = 635.0 .*/cohesion = 1.0e9/' -e 's/^tensile_strength = 1.3e3 .*/tensile_strength = 1.0e9/' "$scene" > "$tmp/elastic.toml"
-[ "$(grep -c '^cohesion = 1.0e9$\|^tensile_strength = 1.0e9$' "$tmp/elastic.toml")" = 2 ] || { echo "FAIL: small.toml's bond strengths not found"; exit 1; }
+sed -e 's/^cohesion = 635.0 .*/cohesion = 1.0e5/' -e 's/^tensile_strength = 1.3e3 .*/tensile_strength = 1.0e5/' "$scene" > "$tmp/elastic.toml"
+[ "$(grep -c '^cohesion = 1.0e5$\|^tensile_strength = 1.0e5$' "$tmp/elastic.toml")" = 2 ] || { echo "FAIL: small.toml's bond strengths not found"; exit 1; }
 "$bin/run-stage" --scene "$tmp/elastic.toml" --stage cement --in "$tmp/loaded.h5" --out "$tmp/elastic_cemented.h5" $q
 "$bin/run-stage" --scene "$tmp/elastic.toml" --stage drill --in "$tmp/elastic_cemented.h5" --out "$tmp/elastic.h5" $q
 report elastic elastic_cemented

@@ -14,14 +14,18 @@ namespace {
 
 constexpr double kRadius = 0.01;  // m
 
-Simulation plate_scene(const WallMotion& motion = {}) {
-  Simulation sim;
+Material ball() {
   Material m;
   m.name = "ball";
   m.density = 2000;
   m.kn = m.kt = 1e5;
   m.restitution = m.restitution_t = 0.5;
-  sim.materials = MaterialTable({m}, {});
+  return m;
+}
+
+Simulation plate_scene(const WallMotion& motion = {}) {
+  Simulation sim;
+  sim.materials = MaterialTable({ball()}, {});
   sim.walls.push_back(Wall{"plate", 0, {Vec3(-1, -1, 0), Vec3(1, -1, 0), Vec3(1, 1, 0), Vec3(-1, 1, 0)}, motion});
   sim.dt = 4e-5;  // 0.1 of eq. 2.48's 4.1e-4 s
   return sim;
@@ -93,6 +97,33 @@ TEST(StartChecks, FastWallRanksAboveAnInitialOverlapAndTheBlowUpListsBoth) {
   sim.particles = Particles{};
   sim.particles.add(0, Vec3(0, 0, 0.5), kRadius, 2000, 0);
   EXPECT_TRUE(StartChecks(sim).suspects().empty());
+}
+
+// Bonds that hold far beyond a diameter (a tensile strength far above the forces carried: Liu's
+// bond breaks at F / kn, eq. P11) widen the neighbour search to their reach: a warning on cost, not
+// a suspect of a failure. A strength of 1 N breaks 1e-5 m apart, 1e9 N 1e4 m apart.
+TEST(StartChecks, BondsReachingBeyondADiameterWarn) {
+  for (const double strength : {1.0, 1e9}) {
+    Simulation sim;
+    Material m = ball();
+    m.law = NormalLaw::Liu;
+    m.tensile_strength = strength;
+    sim.materials = MaterialTable({m}, {});
+    sim.dt = 4e-5;
+    sim.particles.add(0, Vec3(0, 0, 0), kRadius, 2000, 0);
+    sim.particles.add(1, Vec3(1.99 * kRadius, 0, 0), kRadius, 2000, 0);
+    ASSERT_EQ(sim.bond_present_contacts(false), 1u);
+    ASSERT_TRUE(sim.has_bonds());
+    const StartChecks c(sim);
+    EXPECT_TRUE(c.suspects().empty()) << "a bond's reach causes no failure";
+    if (strength < 1e3) {
+      EXPECT_TRUE(c.slow().empty()) << c.slow()[0];
+    } else {
+      ASSERT_EQ(c.slow().size(), 1u);
+      EXPECT_TRUE(has(c.slow()[0], "bonds hold until their particles are 10000 m apart")) << c.slow()[0];
+      EXPECT_TRUE(has(c.slow()[0], "more than the largest diameter (0.02 m)")) << c.slow()[0];
+    }
+  }
 }
 
 TEST(StartChecks, NoSuspectsLeaveTheErrorAsItIs) {

@@ -199,6 +199,18 @@ StartChecks::StartChecks(const Simulation& sim, const GenerationSpec* generation
     suspects_.push_back({score, m.str()});
   }
 
+  // Bonds that hold far apart: the neighbour search lists every pair within the bonds' reach (the
+  // margin of Simulation::find_contacts), so a strength far above the forces carried ("unbreakable"
+  // bonds of 1e9 N reach metres) lists nearly every pair of the sample.
+  const double reach = sim.materials.max_break_separation(), d_max = 2 * *std::max_element(p.radius.begin(), p.radius.end());
+  if (sim.has_bonds() && reach > d_max) {
+    std::ostringstream m;
+    m << "bonds hold until their particles are " << reach << " m apart (a material's tensile_strength over kn, docs/physics.md eq. P11-P13), "
+      << "more than the largest diameter (" << d_max << " m): the neighbour search lists every pair within that reach, which costs "
+      << "time and memory; a bond meant not to break needs a tensile_strength only above the forces it carries";
+    slow_.push_back(m.str());
+  }
+
   // Particles overlapping each other at step 0.
   if (pairs.worst > threshold) {
     std::ostringstream m;
@@ -212,6 +224,7 @@ StartChecks::StartChecks(const Simulation& sim, const GenerationSpec* generation
 
 void StartChecks::print(const std::string& tool) const {
   for (const Suspect& s : suspects_) std::cerr << tool << ": warning: " << s.text << "\n";
+  for (const std::string& s : slow_) std::cerr << tool << ": warning: " << s << "\n";
 }
 
 void StartChecks::rethrow(const PhysicsError& e) const {

@@ -30,6 +30,7 @@ class StartChecks {
   explicit StartChecks(const Simulation& sim, const GenerationSpec* generation = nullptr);
 
   const std::vector<Suspect>& suspects() const { return suspects_; }  // most likely first
+  const std::vector<std::string>& slow() const { return slow_; }      // costly settings, not causes of failure
   void print(const std::string& tool) const;                          // "TOOL: warning: ..." on stderr
 
   // Rethrows e with the suspects listed before its advice (e unchanged when there are none).
@@ -46,6 +47,7 @@ class StartChecks {
 
  private:
   std::vector<Suspect> suspects_;
+  std::vector<std::string> slow_;
 };
 
 // The fluid's drag relaxes a grain's velocity towards the flow's in tau = rho_p / (d(D w)/dw)
