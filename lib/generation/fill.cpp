@@ -62,8 +62,9 @@ int draw_material(const GenerationSpec& spec, std::mt19937_64& rng) {
 
 long max_attempts(const GenerationSpec& spec) { return 1000L * spec.count + 100000; }
 
-// Uniform radii (the default): radius, centre and material drawn afresh at every attempt, exactly
-// as before size distributions existed, so older scenes give the same bits.
+// No [generation.size] (uniform radii by default): radius, centre and material drawn afresh at every
+// attempt, exactly as before size distributions existed, so older scenes give the same bits. A
+// crowded box rejects large candidates more often, so the radii come out smaller than uniform.
 void place_drawn_per_attempt(Simulation& sim, const GenerationSpec& spec, const RadiusSampler& sizes, FreeSpace& space,
                              Index first_id, std::size_t first, std::mt19937_64& rng) {
   Particles& p = sim.particles;
@@ -80,7 +81,7 @@ void place_drawn_per_attempt(Simulation& sim, const GenerationSpec& spec, const 
   }
 }
 
-// Other distributions: all radii drawn first (so the set drawn is the distribution asked: a
+// A [generation.size] table, uniform included: all radii drawn first (so the set drawn is the distribution asked: a
 // rejected candidate keeps its radius), then placed largest first (large spheres find room while
 // the box is empty); each sphere's material is drawn once, its centre at every attempt.
 void place_largest_first(Simulation& sim, const GenerationSpec& spec, const RadiusSampler& sizes, FreeSpace& space,
@@ -115,7 +116,7 @@ void fill_random(Simulation& sim, const GenerationSpec& spec, std::mt19937_64& r
           s.material);
   }
   FreeSpace space(p, spec, first);
-  if (spec.size.kind == SizeSpec::Kind::Uniform) place_drawn_per_attempt(sim, spec, sizes, space, first_id, first, rng);
+  if (spec.size.kind == SizeSpec::Kind::Uniform && !spec.size.given) place_drawn_per_attempt(sim, spec, sizes, space, first_id, first, rng);
   else place_largest_first(sim, spec, sizes, space, first_id, first, rng);
 }
 

@@ -860,6 +860,7 @@ SizeSpec read_size(TableReader& gen) {
   const toml::table* t = gen.subtable("size");
   if (!t) return s;
   TableReader r(*t, gen.file(), gen.name("size"));
+  s.given = true;
   static const std::vector<std::string> names = {"uniform", "normal", "lognormal", "sieve"};
   const std::string kind = r.choice("distribution", names);
   s.kind = static_cast<SizeSpec::Kind>(std::find(names.begin(), names.end(), kind) - names.begin());

@@ -67,6 +67,7 @@ struct SizeSpec {
   double median_radius = 0;          // LogNormal: median of the untruncated radius distribution [m]
   double geometric_std = 1;          // LogNormal: exp(standard deviation of ln r), > 1
   std::vector<std::pair<double, double>> sieve;  // Sieve: (diameter [m], cumulative mass fraction passing)
+  bool given = false;  // [generation.size] present: the radii are drawn first (uniform too), not per attempt
 };
 
 struct GenerationSpec {
