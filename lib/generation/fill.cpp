@@ -81,9 +81,10 @@ void place_drawn_per_attempt(Simulation& sim, const GenerationSpec& spec, const 
   }
 }
 
-// A [generation.size] table, uniform included: all radii drawn first (so the set drawn is the distribution asked: a
-// rejected candidate keeps its radius), then placed largest first (large spheres find room while
-// the box is empty); each sphere's material is drawn once, its centre at every attempt.
+// A [generation.size] table, uniform included: all radii drawn first (so the set drawn is the
+// distribution asked: a rejected candidate keeps its radius), then placed largest first (large
+// spheres find room while the box is empty); each sphere's material is drawn once, its centre at
+// every attempt.
 void place_largest_first(Simulation& sim, const GenerationSpec& spec, const RadiusSampler& sizes, FreeSpace& space,
                          Index first_id, std::size_t first, std::mt19937_64& rng) {
   Particles& p = sim.particles;
