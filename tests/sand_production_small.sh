@@ -33,7 +33,8 @@ q="--quiet"
 "$bin/run-stage" --scene "$scene" --stage load --in "$tmp/compacted.h5" --out "$tmp/loaded.h5" $q
 "$bin/run-stage" --scene "$scene" --stage cement --in "$tmp/loaded.h5" --out "$tmp/cemented.h5" $q
 "$bin/run-stage" --scene "$scene" --stage drill --in "$tmp/cemented.h5" --out "$tmp/drilled.h5" $q
-# The stress around the well against Kirsch, the broken bonds and the displacement: report NOW CEMENTED.
+# Usage: report NOW CEMENTED (checkpoint names under $tmp): the stress around the well against
+# Kirsch, the broken bonds and the displacement of NOW, counted from the bonds and positions of CEMENTED.
 report() {
   "$bin/post-macro" --in "$tmp/$1.h5" --reference "$tmp/$2.h5" --vtk "$tmp/$1.vtu" $q
   "$py" "$src/../scripts/well_report.py" --stress "$tmp/$1.vtu" --bonds-made "$tmp/$2.h5" --bonds-now "$tmp/$1.h5" \
