@@ -137,9 +137,10 @@ struct WallScratch {
 
 // The wall candidates of run r (one particle's, in order) after its pair contacts: whether each is a
 // contact, its law, its loads added to the particle's; with `power`, the walls' power f · v_wall
-// at the contact points added to it. Returns the largest relative overlap.
+// at the contact points added to it; with `work` (the energy log), each contact's part of the
+// step's work (add_wall_contact_work). Returns the largest relative overlap.
 template <class Model>
-double wall_run(const ForceLoopInput& in, ContactList& wc, ForceBlocks& out, long r, WallScratch& scratch, double* power) {
+double wall_run(const ForceLoopInput& in, ContactList& wc, ForceBlocks& out, long r, WallScratch& scratch, double* power, StepWork* work) {
   const Particles& p = in.particles;
   const int first = in.wall_runs[r], n = in.wall_runs[r + 1] - first;
   const int i = wc.slot_i[first];
@@ -202,6 +203,7 @@ double wall_run(const ForceLoopInput& in, ContactList& wc, ForceBlocks& out, lon
     out.torque[i].v += p.radius[i] * torque_per_radius;  // eq. 2.33
     if constexpr (Model::has_rolling) out.torque[i].v += f.couple;  // eq. R1
     if (power) *power += f.on_i.dot(v_wall);
+    if (work) add_wall_contact_work(f, c.n, torque_per_radius, v_wall, g.spin, in.dt, out.work[i], *work);
     worst = std::max(worst, relative_overlap_if_larger(c.overlap, p.radius[i], worst));
   }
   return worst;
@@ -317,11 +319,11 @@ void sum_pair_contacts(const ForceBlocks& out, const PairResults& r, const Parti
 
 // The net loads of block b's particles (ForceBlocks): each one's weight and pair contacts, then its
 // wall contacts, then the fluid's force; then, within a step, their motion (`not_finite`: the last
-// slot whose new state is not finite). Called once every block holding a pair contact of theirs
-// has been computed.
+// slot whose new state is not finite) and, with the energy log, their work (`work`: the thread's
+// sums). Called once every block holding a pair contact of theirs has been computed.
 template <class Model>
 double finish_block(const ForceLoopInput& in, const ContactList& pc, ContactList& wc, ForceBlocks& out, long b,
-                    WallScratch& scratch, long& not_finite) {
+                    WallScratch& scratch, long& not_finite, StepWork& work) {
   const Particles& p = in.particles;
   const long lo = b * out.block, hi = std::min(static_cast<long>(p.size()), lo + out.block);
   const PairResults r{pc.sum.data(), pc.rolling.data(), in.work, pc.active.data()};
@@ -329,10 +331,12 @@ double finish_block(const ForceLoopInput& in, const ContactList& pc, ContactList
   else sum_pair_contacts<Model::has_rolling, false>(out, r, p, lo, hi);
   double worst = 0, power = 0;
   for (int q = in.wall_block_first[b]; q < in.wall_block_first[b + 1]; ++q)
-    worst = std::max(worst, wall_run<Model>(in, wc, out, in.wall_run_order[q], scratch, out.wall_power ? &power : nullptr));
+    worst = std::max(worst, wall_run<Model>(in, wc, out, in.wall_run_order[q], scratch, out.wall_power ? &power : nullptr,
+                                            out.step_work ? &work : nullptr));
   if (out.wall_power) out.wall_power[b] = power;
   if (out.body.fluid) out.body.add_fluid(p, lo, hi, out.force.data(), out.simd);
   if (out.motion) not_finite = std::max(not_finite, move_particles(out.motion->arrays, out.motion->constants, lo, hi));
+  if (out.particle_work) add_particle_work(p, *out.particle_work, lo, hi, work);
   return worst;
 }
 
@@ -358,6 +362,7 @@ double block_forces(const ForceLoopInput& in, ContactList& pc, ContactList& wc, 
     WallScratch& mine = scratch;  // the thread's own, looked up once (each use of a thread_local looks it up)
     std::vector<long>& deferred = later;
     deferred.clear();
+    StepWork work;  // the thread's share of the step's work, while the energy log is on
     const long tick = out.epoch;
     const auto pairs_of = [&](long b) {
       if (t == lagging.thread) std::this_thread::sleep_for(std::chrono::microseconds(lagging.microseconds));
@@ -378,7 +383,7 @@ double block_forces(const ForceLoopInput& in, ContactList& pc, ContactList& wc, 
       const long tb = BlockTimes::now();
       if (b < early) pairs_of(b);
       // Finished now, while its contacts are in cache, unless some lie in another thread's blocks.
-      if (out.needs[b] >= start) worst = std::max(worst, finish_block<Model>(in, pc, wc, out, b, mine, not_finite));
+      if (out.needs[b] >= start) worst = std::max(worst, finish_block<Model>(in, pc, wc, out, b, mine, not_finite, work));
       else deferred.push_back(b);
       if (b < early) out.times.record(b, tb);
       else out.times.add(b, tb);
@@ -386,8 +391,12 @@ double block_forces(const ForceLoopInput& in, ContactList& pc, ContactList& wc, 
     for (long b : deferred) {
       for (long o = out.needs[b]; o < start; ++o) wait_until_done(out.done, o, tick);
       const long tb = BlockTimes::now();  // after the wait: a block's time is its own work
-      worst = std::max(worst, finish_block<Model>(in, pc, wc, out, b, mine, not_finite));
+      worst = std::max(worst, finish_block<Model>(in, pc, wc, out, b, mine, not_finite, work));
       out.times.add(b, tb);
+    }
+    if (out.step_work) {
+#pragma omp critical(dem_step_work)
+      out.step_work->add(work);  // exact: in any order
     }
   }
   out.not_finite = not_finite;

@@ -10,6 +10,7 @@
 #include "contact/kinematics.hpp"
 #include "core/block_times.hpp"
 #include "forces/body_forces.hpp"
+#include "forces/step_work.hpp"
 #include "integrate/motion.hpp"
 #include "state/load_sum.hpp"
 #include "state/materials.hpp"
@@ -20,24 +21,6 @@
 namespace dem {
 
 class Simulation;
-
-// While the energy log is on: per particle, over its pair contacts as its net load sums them (+ where
-// it is i, - where it is j; n x f_t + in both), their ContactWork, n x f_t and rolling couples, so that
-// the ledger takes the contacts' work per particle: Σ_k f_k · (v̄_i - v̄_j) = Σ_p F_p · v̄_p.
-struct ParticleWork {
-  LoadSum damping;            // Σ ± f_d n
-  LoadSum tangential;         // Σ ± f_t
-  LoadSum torque_per_radius;  // Σ n x f_t (times the radius: the contacts' torque)
-  LoadSum couple;             // Σ ± M (rolling resistance), else 0
-};
-
-// A contact's force f on i split into ContactWork's parts from f alone (n from i to its partner,
-// f_el the law's elastic force at its overlap, repulsive > 0): the wall contacts, in the ledger's
-// pass (a pair contact's law leaves its own, ContactForce::normal and ::elastic).
-inline ContactWork split_contact_force(const Vec3& f, const Vec3& n, double f_el) {
-  const double f_normal = f.dot(n);  // < 0 repulsive
-  return {(-f_normal - f_el) * n, f - f_normal * n};
-}
 
 // What the force loop reads.
 struct ForceLoopInput {
@@ -97,6 +80,11 @@ struct ForceBlocks {
   // still to compute reads them: a particle's contacts lie in its block or earlier ones, all done
   // by then. Null: the loads only (post-processing, or a step whose checks read the state first).
   const MotionStep* motion = nullptr;
+  // While the energy log is on (with `work`): the step's work the loop adds, its wall contacts'
+  // (add_wall_contact_work) and, where `particle_work` is given (with `motion`), each block's
+  // particles' once they have moved (add_particle_work).
+  StepWork* step_work = nullptr;
+  const StepWorkInput* particle_work = nullptr;
   long not_finite = -1;  // with motion: the last slot whose new state is not finite (move_particles)
 };
 

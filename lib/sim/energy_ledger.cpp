@@ -1,6 +1,8 @@
 #include "sim/energy_ledger.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -10,13 +12,6 @@
 #include "sim/simulation.hpp"
 
 namespace dem {
-
-double FixedSum::value() const {
-  if (bad_ != 0)
-    throw PhysicsError("energy log: a term of " + std::to_string(bad_) + " J in one step, beyond the ledger's range of 6.9e10 J",
-                       "the run has gone unstable (check the time step), or it is too large for the energy log");
-  return static_cast<double>(sum_) * 0x1p-90;  // exact: a power of 2, and sum_ is 0 or at least 1
-}
 
 double EnergyLedger::scale() const {
   return reference.kinetic_translation + reference.kinetic_rotation + std::abs(reference.elastic_normal) + reference.elastic_tangential +
@@ -55,7 +50,7 @@ namespace {
 
 // What one contact adds to the step's sums.
 struct ContactTerms {
-  FixedSum damping, tangential_work, released, walls, elastic, springs, rolling_work, rolling_springs;
+  FixedSum released, elastic, springs, rolling_springs;
 };
 
 // eq. P42: what an epsd2 rolling spring holds, ½ |M|² / k_r at the half step as P31 takes it, less
@@ -121,81 +116,51 @@ void account_held(const PairParams& q, const Vec3& spring, const Vec3& n, double
   if (measure) t.springs.add(with_tangential_law(q, [&](auto law) { return decltype(law)::stored_energy(q, spring, u, r_eff); }));
 }
 
-// A wall contact's work with the mean velocities (force `f` on i, n x f_t `tpr`): its dashpot's,
-// f_d u̇ (eq. P33), and the rest of its power, f · (v̄_i - v_wall) + (n x f_t) · a_i w̄_i less the
-// normal part (eq. P34). `dv_mean` = v̄_i - v_wall at the contact point, `arm_w` = a_i w̄_i. (A
-// pair contact's from the forces the force loop left, ContactWork.)
-template <class Normal>
-[[gnu::always_inline]] inline void account_wall_work(const PairParams& q, const Vec3& f, const Vec3& tpr, const Vec3& n, double u,
-                                                     double r_eff, bool bonded, const Vec3& dv_mean, const Vec3& arm_w, double dt,
-                                                     ContactTerms& t) {
-  bool b = bonded;
-  const ContactWork c = split_contact_force(f, n, Normal::elastic(q, u, r_eff, b));  // the elastic force at u^n
-  t.damping.add(c.damping.dot(dv_mean) * dt);
-  t.tangential_work.add((c.tangential.dot(dv_mean) + tpr.dot(arm_w)) * dt);
-}
-
-// One thread's share of a step's sums; summed over the threads in FixedSum's integers, so the
-// figures do not depend on how the particles and contacts were split.
+// One thread's share of what the ledger's pass adds; summed over the threads in FixedSum's
+// integers, so the figures do not depend on how the particles and contacts were split.
 struct StepSums {
-  FixedSum kin_t, kin_r, potential, global, prescribed, fluid;
+  FixedSum kin_t, kin_r, potential;
   ContactTerms c;
+  StepWork work;  // the particles' work, where the force loop did not add it
   void add(const StepSums& o) {
-    kin_t.add(o.kin_t), kin_r.add(o.kin_r), potential.add(o.potential), global.add(o.global);
-    prescribed.add(o.prescribed), fluid.add(o.fluid);
-    c.damping.add(o.c.damping), c.tangential_work.add(o.c.tangential_work), c.released.add(o.c.released), c.walls.add(o.c.walls);
-    c.elastic.add(o.c.elastic), c.springs.add(o.c.springs), c.rolling_work.add(o.c.rolling_work);
-    c.rolling_springs.add(o.c.rolling_springs);
+    kin_t.add(o.kin_t), kin_r.add(o.kin_r), potential.add(o.potential);
+    c.released.add(o.c.released), c.elastic.add(o.c.elastic), c.springs.add(o.c.springs), c.rolling_springs.add(o.c.rolling_springs);
+    work.add(o.work);
   }
 };
 
 }  // namespace
+
+StepWorkInput Simulation::ledger_work_input(const FluidField* fluid, bool any_fixed) const {
+  const bool rolling = !force_variant_ || force_variant_->rolling != RollingLaw::None;  // else no couples
+  return {ledger_x_.data(), ledger_v_.data(), ledger_w_.data(), ledger_particle_work_.data(), block_force_.data(), block_torque_.data(),
+          fluid, params.gravity, params.alpha_r, params.alpha_theta, dt, rolling, any_fixed};
+}
 
 void Simulation::account_energy(bool any_fixed) {
   const Particles& p = particles;
   const long count = static_cast<long>(p.size());
   const Vec3* x0 = ledger_x_.data();
   const Vec3 *v0 = ledger_v_.data(), *w0 = ledger_w_.data();
-  auto v_mean = [&](std::size_t k) { return Vec3(0.5 * (v0[k] + p.v[k])); };
-  auto w_mean = [&](std::size_t k) { return Vec3(0.5 * (w0[k] + p.w[k])); };
-  const bool has_fluid = params.fluid.on();
   // What the particles and contacts hold is measured only where asked (and at the reference); the
-  // work of the step is added every step.
+  // work of the step is added every step: by the force loop (its wall contacts', and its
+  // particles' where they moved in it: ledger_particles_done_), else by this pass.
   const bool measure = ledger.measure_now || !ledger.have_reference;
-  const bool global_damping = params.alpha_r != 0 || params.alpha_theta != 0;
-  const bool rolling = !force_variant_ || force_variant_->rolling != RollingLaw::None;  // else no couples
-  // Inlined into its loop, so that the thread's sums and the loop's constants stay in registers.
-  auto account_particle = [&](std::size_t k, StepSums& s) __attribute__((always_inline)) {
-    const double I = p.inertia(k);
-    if (measure) {
-      s.kin_t.add(0.5 * p.mass[k] * p.v[k].squaredNorm());
-      s.kin_r.add(0.5 * I * p.w[k].squaredNorm());
-      // eq. P30: at the mean of x^n and x^{n+1} = x^{n+1} - v^{n+1/2} Δt/2.
-      s.potential.add(-p.mass[k] * params.gravity.dot(unwrapped_position(k) - 0.5 * dt * p.v[k]));
-    }
-    const Vec3 v = v_mean(k), w = w_mean(k);
-    // eq. P33-P34, P41: the work of its pair contacts' forces, as the force loop summed them for it
-    // (ParticleWork), with its mean velocities: a contact's f · (v̄_i - v̄_j) is f · v̄_i on i and
-    // -f · v̄_j on j. Its torque's r (n x f_t) · w̄ and the couples' M · w̄ likewise.
-    const ParticleWork& pw = ledger_particle_work_[k];
-    s.c.damping.add(pw.damping.v.dot(v) * dt);
-    s.c.tangential_work.add((pw.tangential.v.dot(v) + p.radius[k] * pw.torque_per_radius.v.dot(w)) * dt);
-    if (rolling) s.c.rolling_work.add(pw.couple.v.dot(w) * dt);
-    // eq. P40: the fluid's force as the force loop took it (x^n, v^{n-1/2}), times the mean velocity.
-    if (has_fluid) s.fluid.add(params.fluid.force(p.radius[k], p.void_fraction[k], x0[k], v0[k], params.gravity).dot(v) * dt);
-    const std::uint8_t fixed = any_fixed ? p.fixed[k] : 0;
-    if (fixed == kPrescribed) {
-      s.prescribed.add(-(block_force_[k].v.dot(v) + block_torque_[k].v.dot(w)) * dt);  // eq. P37
-    } else if (!fixed && global_damping) {
-      // eq. P35: the integrator's m (v+ - v-) = F Δt - α m v̄ Δt takes α m |v̄|² Δt.
-      s.global.add((params.alpha_r * p.mass[k] * v.squaredNorm() + params.alpha_theta * I * w.squaredNorm()) * dt);
-    }
+  std::optional<FluidField> fluid;
+  if (params.fluid.on()) fluid.emplace(params.fluid);
+  const StepWorkInput work_input = ledger_work_input(fluid ? &*fluid : nullptr, any_fixed);
+  const long particle_work_count = ledger_particles_done_ ? 0 : count, measure_count = measure ? count : 0;
+  // eq. P30: the kinetic energy at the half step, the potential at the mean of x^n and x^{n+1} = x^{n+1} - v^{n+1/2} Δt/2.
+  auto measure_particle = [&](std::size_t k, StepSums& s) __attribute__((always_inline)) {
+    s.kin_t.add(0.5 * p.mass[k] * p.v[k].squaredNorm());
+    s.kin_r.add(0.5 * p.inertia(k) * p.w[k].squaredNorm());
+    s.potential.add(-p.mass[k] * params.gravity.dot(unwrapped_position(k) - 0.5 * dt * p.v[k]));
   };
   // Some bond broke this step: its count fell (the force loop never makes one).
   const bool breaks = (!ledger_pair_bonded_.empty() || !ledger_wall_bonded_.empty()) && bond_count() != ledger_bond_count_;
   auto account_pair = [&](auto normal, std::size_t k, ContactTerms& t) {
     const bool broke = breaks && k < ledger_pair_bonded_.size() && ledger_pair_bonded_[k] && !pairs_.bonded[k];
-    // Its work this step is its particles' (account_particle); what it holds, where it broke or is measured.
+    // Its work this step is its particles' (add_particle_work); what it holds, where it broke or is measured.
     if (!broke && !(measure && pairs_.active[k])) [[likely]]
       return;
     const int i = pairs_.slot_i[k], j = pairs_.slot_j[k];
@@ -209,7 +174,8 @@ void Simulation::account_energy(bool any_fixed) {
   };
   auto account_wall = [&](auto normal, std::size_t k, ContactTerms& t) {
     const bool broke = breaks && k < ledger_wall_bonded_.size() && ledger_wall_bonded_[k] && !walls_.bonded[k];
-    if (!walls_.active[k] && !broke) return;
+    // Its work this step is the force loop's (add_wall_contact_work); what it holds, as a pair's.
+    if (!broke && !(measure && walls_.active[k])) return;
     const int i = walls_.slot_i[k], w = walls_.slot_j[k];
     const WallGeometry& g = wall_geometry_[w];
     const Vec3 c = closest_point(g, x0[i]);
@@ -217,35 +183,26 @@ void Simulation::account_energy(bool any_fixed) {
     const double dist = to_wall.norm();
     const Vec3 n = dist > 0 ? Vec3(to_wall / dist) : g.normal;
     const Vec3 v_wall = g.velocity_of(c);
-    const Vec3& f = walls_.sum[k].force;
-    t.walls.add(f.dot(v_wall) * dt);  // eq. P37
     const PairParams& q = materials.pair(p.material[i], walls[w].material);
     const double u = p.radius[i] - dist;
-    account_wall_work<decltype(normal)>(q, f, walls_.sum[k].torque_per_radius, n, u, p.radius[i], walls_.bonded[k], v_mean(i) - v_wall,
-                                        p.radius[i] * w_mean(i), dt, t);
-    if (broke || measure)
-      account_held<decltype(normal)>(q, walls_.spring[k], n, u, p.radius[i], walls_.bonded[k], broke, p.v[i] - v_wall, v0[i] - v_wall, dt,
-                                     measure, t);
-    if (q.rolling != RollingLaw::None) {
-      // eq. P41: the couple M on i works on w̄_i - the wall's spin; the couple -M on the wall is held
-      // by its drive, which puts in M · spin (eq. P37).
-      const Vec3& couple = walls_.rolling[k];
-      t.walls.add(couple.dot(g.spin) * dt);
-      t.rolling_work.add(couple.dot(w_mean(i) - g.spin) * dt);
-      if (measure) account_rolling_spring(q, couple, p.w[i] - g.spin, u, p.radius[i], dt, t);
-    }
+    account_held<decltype(normal)>(q, walls_.spring[k], n, u, p.radius[i], walls_.bonded[k], broke, p.v[i] - v_wall, v0[i] - v_wall, dt,
+                                   measure, t);
+    if (measure && q.rolling != RollingLaw::None) account_rolling_spring(q, walls_.rolling[k], p.w[i] - g.spin, u, p.radius[i], dt, t);
   };
   // Each thread its own sums over fixed ranges of the particles and contacts (a term out of range
-  // is kept, not thrown, and reported by value() after the region).
+  // is kept, not thrown, and reported by value() after the region). A step with nothing to
+  // measure, no bond broken and its particles' work done in the force loop needs no pass.
   StepSums sums;
-  // A pair contact is visited only where a bond broke or what it holds is measured.
-  const long pair_count = breaks || measure ? static_cast<long>(pairs_.size()) : 0, wall_count = static_cast<long>(walls_.size());
+  const bool contacts = breaks || measure;
+  const long pair_count = contacts ? static_cast<long>(pairs_.size()) : 0, wall_count = contacts ? static_cast<long>(walls_.size()) : 0;
   auto account_all = [&](auto normal) {
 #pragma omp parallel
     {
       StepSums mine;
 #pragma omp for schedule(static) nowait
-      for (long k = 0; k < count; ++k) account_particle(k, mine);  // each step: its pair contacts' work (ParticleWork)
+      for (long k = 0; k < measure_count; ++k) measure_particle(k, mine);
+#pragma omp for schedule(static) nowait
+      for (long lo = 0; lo < particle_work_count; lo += 1024) add_particle_work(p, work_input, lo, std::min(particle_work_count, lo + 1024), mine.work);
 #pragma omp for schedule(static) nowait
       for (long k = 0; k < pair_count; ++k) account_pair(normal, k, mine.c);
 #pragma omp for schedule(static) nowait
@@ -255,9 +212,13 @@ void Simulation::account_energy(bool any_fixed) {
     }
   };
   // The normal law the force loop ran this step (force_loop.hpp): one for all pairs, or each pair's own.
-  if (force_variant_) with_normal_law(force_variant_->normal, account_all);
-  else account_all(MixedNormal{});
+  if (measure_count > 0 || particle_work_count > 0 || contacts) {
+    if (force_variant_) with_normal_law(force_variant_->normal, account_all);
+    else account_all(MixedNormal{});
+  }
   const ContactTerms& t = sums.c;
+  StepWork work = ledger_work_;
+  work.add(sums.work);
   ledger_pair_bonded_.clear();
   ledger_wall_bonded_.clear();
   FibreTerms fibre_terms;
@@ -274,15 +235,15 @@ void Simulation::account_energy(bool any_fixed) {
     return;
   }
   EnergyTotals& s = l.totals;
-  const double walls_in = t.walls.value(), prescribed_in = sums.prescribed.value(), fluid_in = sums.fluid.value();
-  s.damping_normal += t.damping.value();
-  s.tangential_work += t.tangential_work.value();
-  s.global_damping += sums.global.value();
+  const double walls_in = work.walls.value(), prescribed_in = work.prescribed.value(), fluid_in = work.fluid.value();
+  s.damping_normal += work.damping.value();
+  s.tangential_work += work.tangential.value();
+  s.global_damping += work.global.value();
   s.released += t.released.value();
   s.work_walls += walls_in;
   s.work_prescribed += prescribed_in;
   s.work_fluid += fluid_in;
-  s.rolling_work += t.rolling_work.value();
+  s.rolling_work += work.rolling.value();
   s.fibres_released += fibre_terms.released.value();
   s.work_abs += std::abs(walls_in) + std::abs(prescribed_in) + std::abs(fluid_in);
 }

@@ -1,11 +1,12 @@
 #pragma once
 // The energy balance of a run (docs/physics.md eq. P29-P45), kept only when asked (run-stage's
-// energy log): each step, after the motion, a pass over the particles and contacts adds what the
-// step dissipated, released and put in, and, at the steps whose figures are read (measure_now),
-// measures what the particles and contacts hold. For the pair contacts' work each contact's law
-// leaves its dashpot and tangential forces (contact/kinematics.hpp, ContactWork), so that the pass
-// takes only the velocities: a run that does not ask pays one test per step and one per group of
-// contacts of the force loop.
+// energy log): each step it adds what the step dissipated, released and put in, and, at the steps
+// whose figures are read (measure_now), measures what the particles and contacts hold. The work
+// is taken where it arises (forces/step_work.hpp): each contact's law leaves its dashpot and
+// tangential forces, the force loop sums them per particle and, as each block moves, takes their
+// work with the velocities. The pass after the motion (account_energy) takes what is held, the
+// energy of bonds that broke, and the particles' work on a step whose motion ran apart. A run
+// that does not ask pays one test per step and one per group of contacts of the force loop.
 //
 // The scheme follows the integrator (leapfrog): the force at step n acts on the velocity between
 // the half steps n-1/2 and n+1/2, so the kinetic energy changes by exactly F · (v^{n-1/2} +
@@ -21,34 +22,9 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/fixed_sum.hpp"
+
 namespace dem {
-
-// A sum of doubles, exact in fixed point (2^-90 J, range ±2^37 J): the same bits in any order.
-// Each term is truncated towards zero to a multiple of 2^-90 J. A term beyond ±2^36 J is not added
-// but kept, and value() throws PhysicsError: add() never throws, so it may run in a parallel region.
-class FixedSum {
- public:
-  void add(double x) {
-    if (!(std::abs(x) < 0x1p36)) [[unlikely]] {
-      bad_ = x;
-      return;
-    }
-    // trunc(x 2^90) in two exact steps of at most 63 bits: |x 2^90| < 2^126, and the rest after the
-    // high part is a double that fits an int64 (a plain (__int128) cast is a libgcc call).
-    const double y = x * 0x1p90;  // exact: a power of 2
-    const std::int64_t high = static_cast<std::int64_t>(y * 0x1p-63);
-    sum_ += static_cast<__int128>(high) * (__int128{1} << 63) + static_cast<std::int64_t>(y - static_cast<double>(high) * 0x1p63);
-  }
-  void add(const FixedSum& s) {
-    sum_ += s.sum_;
-    if (s.bad_ != 0) bad_ = s.bad_;
-  }
-  double value() const;
-
- private:
-  __int128 sum_ = 0;
-  double bad_ = 0;  // the last term out of range (NaN counts: NaN != 0)
-};
 
 // What the ledger has accumulated since its reference (the end of the first step it saw) [J].
 struct EnergyTotals {

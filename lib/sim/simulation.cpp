@@ -78,6 +78,15 @@ void Simulation::compute_loads(const MotionStep* motion) {
                     ledger.on ? ledger_particle_work_.data() : nullptr, sum_wall_power ? wall_power_.data() : nullptr,
                     motion};
   force_variant_ = choose_force_variant(materials, has_bonds());
+  // The energy log: the step's work added where it arises, the particles' as each block moves.
+  StepWorkInput particle_work;
+  ledger_work_ = StepWork{};
+  ledger_particles_done_ = ledger.on && motion;
+  if (ledger.on) loads.step_work = &ledger_work_;
+  if (ledger_particles_done_) {
+    particle_work = ledger_work_input(fluid ? &*body.fluid : nullptr, any_fixed);
+    loads.particle_work = &particle_work;
+  }
   const double worst_overlap = compute_contact_forces(in, force_variant_, pairs_, walls_, loads);
   // Fibres: a force source after the contacts and body forces (one serial loop over segments).
   if (!fibres.empty()) {

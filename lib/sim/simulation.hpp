@@ -183,6 +183,8 @@ class Simulation {
   // The energy ledger's pass (sim/energy_ledger.cpp) after the motion, which kept x^n, v^{n-1/2}
   // and w^{n-1/2} (motion_step).
   void account_energy(bool any_fixed);
+  // What the ledger's particle work reads (forces/step_work.hpp), the fluid's field `fluid` or null.
+  StepWorkInput ledger_work_input(const FluidField* fluid, bool any_fixed) const;
 
   bool has_bonds_ = false;
   long bond_count() const;  // the sum of the pair and wall contacts' bonded flags (0: none bonded)
@@ -235,6 +237,8 @@ class Simulation {
   std::vector<std::uint8_t> ledger_fibre_broken_;  // the fibre segments broken before the force loop
   std::vector<ContactWork> ledger_contact_work_;  // while ledger.on: what each pair contact's law left, per candidate
   std::vector<ParticleWork> ledger_particle_work_;  // while ledger.on: the force loop's, per slot
+  StepWork ledger_work_;  // while ledger.on: the step's work the force loop added (ForceBlocks::step_work)
+  bool ledger_particles_done_ = false;  // whether that includes the particles' (the motion ran in the loop)
   std::optional<ModelChoice> force_variant_;  // the force loop's this step (force_loop.hpp's ForceVariant)
 };
 

@@ -1,0 +1,85 @@
+#pragma once
+// The work of one step on the particles, for the energy ledger (sim/energy_ledger.hpp; docs/physics.md
+// eq. P33-P35, P37, P40-P41), summed where its terms arise: each contact's law leaves its dashpot and
+// tangential forces, the force loop sums them per particle (ParticleWork), and once a particle has
+// moved its work is those times its mean velocity (add_particle_work). Within a step whose motion
+// runs in the force loop, that is done block by block while the block is in cache; otherwise the
+// ledger's pass does it after the motion, with the same function: the same bits either way.
+#include <cstdint>
+
+#include "contact/kinematics.hpp"
+#include "core/fixed_sum.hpp"
+#include "core/types.hpp"
+#include "forces/fluid.hpp"
+#include "state/load_sum.hpp"
+#include "state/particles.hpp"
+
+namespace dem {
+
+// While the energy log is on: per particle, over its contacts as its net load sums them (+ where
+// it is i, - where it is j; n x f_t + in both; a wall contact's after its pair contacts), their
+// ContactWork, n x f_t and rolling couples, so that the ledger takes the contacts' work per
+// particle: Σ_k f_k · (v̄_i - v̄_j) = Σ_p F_p · v̄_p.
+struct ParticleWork {
+  LoadSum damping;            // Σ ± f_d n
+  LoadSum tangential;         // Σ ± f_t
+  LoadSum torque_per_radius;  // Σ n x f_t (times the radius: the contacts' torque)
+  LoadSum couple;             // Σ ± M (rolling resistance), else 0
+};
+
+// What one step's forces did [J], each term exact (FixedSum): the same bits however the particles
+// and contacts were split among threads.
+struct StepWork {
+  FixedSum damping;     // the normal dashpots', eq. P33
+  FixedSum tangential;  // the tangential forces', eq. P34
+  FixedSum rolling;     // the rolling couples', eq. P41
+  FixedSum walls;       // put in by moving walls, eq. P37
+  FixedSum prescribed;  // put in by what holds prescribed particles to their motion, eq. P37
+  FixedSum fluid;       // the fluid's, eq. P40
+  FixedSum global;      // taken by the global damping, eq. P35
+  void add(const StepWork& o) {
+    damping.add(o.damping), tangential.add(o.tangential), rolling.add(o.rolling), walls.add(o.walls);
+    prescribed.add(o.prescribed), fluid.add(o.fluid), global.add(o.global);
+  }
+};
+
+// What add_particle_work reads besides the particles (their state after the motion).
+struct StepWorkInput {
+  const Vec3* before_x;  // x^n
+  const Vec3* before_v;  // v^{n-1/2}
+  const Vec3* before_w;  // w^{n-1/2}
+  const ParticleWork* work;
+  const LoadSum* force;   // the net loads the motion took (a prescribed particle's: what holds it)
+  const LoadSum* torque;
+  const FluidField* fluid;  // the stage's fluid, or null
+  Vec3 gravity;
+  double alpha_r, alpha_theta;  // the global damping (SimParams)
+  double dt;
+  bool rolling;    // some contact law has rolling couples
+  bool any_fixed;  // Particles::fixed is to be read
+};
+
+// Adds to `sums` the work on particles [lo, hi) of their contacts (ParticleWork), the fluid, what
+// holds the prescribed ones and the global damping, each with the particle's mean velocities
+// v̄ = (v^{n-1/2} + v^{n+1/2})/2, w̄ likewise (docs/physics.md eq. P33-P35, P37, P40-P41).
+void add_particle_work(const Particles& p, const StepWorkInput& in, long lo, long hi, StepWork& sums);
+
+// A wall contact's part (force f on particle i, normal n from i to the wall, n x f_t `torque_per_radius`;
+// the wall's material at the contact point moving at `v_wall`, spinning at `spin`): its forces join
+// i's ParticleWork, to be taken with v̄_i, and what the wall's own motion makes of them is added to
+// `sums` now: f_d and f_t work on v̄_i - v_wall (eq. P33-P34), the wall puts in f · v_wall (eq. P37);
+// a rolling couple M on i works on w̄_i - spin, the wall's drive puts in M · spin (eq. P41).
+inline void add_wall_contact_work(const ContactForce& f, const Vec3& n, const Vec3& torque_per_radius, const Vec3& v_wall,
+                                  const Vec3& spin, double dt, ParticleWork& pw, StepWork& sums) {
+  const Vec3 damping = (f.normal - f.elastic) * n;  // as a pair contact's law leaves it (ContactWork)
+  pw.damping.v += damping;
+  pw.tangential.v += f.tangential;
+  pw.torque_per_radius.v += torque_per_radius;
+  pw.couple.v += f.couple;
+  sums.damping.add(-damping.dot(v_wall) * dt);
+  sums.tangential.add(-f.tangential.dot(v_wall) * dt);
+  sums.walls.add(f.on_i.dot(v_wall) * dt);
+  if (f.couple != Vec3::Zero()) sums.walls.add(f.couple.dot(spin) * dt), sums.rolling.add(-f.couple.dot(spin) * dt);
+}
+
+}  // namespace dem
