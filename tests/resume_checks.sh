@@ -49,6 +49,22 @@ check "restart that does not record its input refused" 3 "does not record the --
 cmp -s "$tmp/saved.restart.h5" "$tmp/r.restart.h5" && { echo "FAIL the edit did not change the file"; fail=1; }
 cp "$tmp/saved.restart.h5" "$tmp/r.restart.h5"
 [ -e "$tmp/r.h5" ] && { echo "FAIL output written by a refused restart"; fail=1; }
+check "restart with a scene whose values changed refused" 3 "was written with another scene: the scene file .*seed8.toml holds other values" -- resume "$tmp/seed8.toml" "$tmp/a.h5"
+# The same values with a comment added, blank lines and spacing changed: the same run, resumed,
+# with the bits of an uninterrupted one.
+{ echo "# a note added while the run was stopped"; echo; sed 's/^\([a-z_]*\) = /\1   =   /' "$scene"; echo "# end"; } > "$tmp/commented.toml"
+cmp -s "$scene" "$tmp/commented.toml" && { echo "FAIL the commented scene is the same text"; fail=1; }
+check "restart with only comments and layout changed accepted" 0 "only in comments and layout (the same values): resuming" -- \
+  "$bin/run-stage" --scene "$tmp/commented.toml" --stage long --in "$tmp/a.h5" --out "$tmp/r.h5" --checkpoint-every 200 --restart
+"$bin/run-stage" --scene "$scene" --stage long --in "$tmp/a.h5" --out "$tmp/whole.h5" --quiet || exit 1
+"$py" -c "
+import h5py, sys, numpy as np
+a, b = h5py.File(sys.argv[1], 'r'), h5py.File(sys.argv[2], 'r')
+for k in ('position', 'velocity', 'angular_velocity'):
+    if not np.array_equal(a['particles/' + k][...], b['particles/' + k][...]): sys.exit('particles/' + k + ' differ')
+" "$tmp/r.h5" "$tmp/whole.h5" || { echo "FAIL the run resumed with a commented scene is not the uninterrupted one"; fail=1; }
+rm -f "$tmp/r.h5"
+cp "$tmp/saved.restart.h5" "$tmp/r.restart.h5"
 check "restart of the same run accepted" 0 "resuming stage long at step" -- \
   "$bin/run-stage" --scene "$scene" --stage long --in "$tmp/a.h5" --out "$tmp/r.h5" --checkpoint-every 200 --restart
 [ -e "$tmp/r.h5" ] && [ ! -e "$tmp/r.restart.h5" ] || { echo "FAIL the resumed run did not finish"; fail=1; }

@@ -1386,6 +1386,18 @@ void read_stages(TableReader& top, Scene& sc) {
 
 }  // namespace
 
+bool same_scene_values(const std::string& a, const std::string& b) {
+  try {
+    const toml::table ta = toml::parse(a), tb = toml::parse(b);
+    // Equal values, and written out alike (the == of numbers takes -0 for 0 and 1 for 1.0).
+    std::ostringstream sa, sb;
+    sa << ta, sb << tb;
+    return ta == tb && sa.str() == sb.str();
+  } catch (const toml::parse_error&) {
+    return false;
+  }
+}
+
 Scene parse_scene(const std::string& text, const std::string& path) {
   toml::table root;
   try {

@@ -116,7 +116,8 @@ std::vector<ServoGroup> stage_servos(const Simulation& sim, const Scene& scene, 
 }
 
 // A periodic checkpoint continues exactly the run that wrote it: the same toolkit version, --in,
-// scene text, walls, files the scene reads and stage. Anything else would give another run's result
+// scene values (its text, or one that differs only in comments and layout), walls, files the
+// scene reads and stage. Anything else would give another run's result
 // under this run's name, so it is refused (InputError) with what differs and how to start over.
 void check_resumable(const StageOptions& o, const Scene& scene, const StageSpec& stage, const std::string& restart_file,
                      const CheckpointMeta& meta) {
@@ -139,8 +140,13 @@ void check_resumable(const StageOptions& o, const Scene& scene, const StageSpec&
   if (in_seal != meta.run.input_seal)
     refuse("was started from a different input: --in " + meta.run.input_path + " (" + meta.run.input_seal + ") then, --in " + o.in + " (" +
            in_seal + ") now");
-  if (meta.scene_text != scene.text)
-    refuse("was written with another scene: the scene file " + o.scene + " differs from the one the periodic checkpoint holds");
+  if (meta.scene_text != scene.text) {
+    if (!same_scene_values(meta.scene_text, scene.text))
+      refuse("was written with another scene: the scene file " + o.scene + " holds other values than the one the periodic checkpoint holds");
+    // An edited comment or layout changes no value: the run is the same one.
+    std::cerr << "run-stage: --restart: the scene file " << o.scene
+              << " differs from the one the periodic checkpoint holds only in comments and layout (the same values): resuming\n";
+  }
   if (!meta.scene_walls.empty() && meta.scene_walls != scene.walls_fingerprint())
     refuse("was written with other walls: the walls " + o.scene + " builds differ (was a wall's STL file edited?)");
   // Entries are "fnv1a64=<hex> size=N PATH": compare the contents, not the path (the same file may be reached by another path).
