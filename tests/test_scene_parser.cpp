@@ -661,5 +661,19 @@ std::vector<BadCase> fibre_bad_cases() {
 
 INSTANTIATE_TEST_SUITE_P(BadFibres, SceneRejects, ::testing::ValuesIn(fibre_bad_cases()));
 
+// run-stage --restart accepts a scene file edited since the periodic checkpoint only where it holds
+// the same values (stage_runner.cpp, check_resumable).
+TEST(SceneParser, SameValuesIgnoreCommentsLayoutKeyOrderAndNumberSpelling) {
+  const std::string a = "[simulation]\nfrac = 0.1\nsteps = 3\n[[stage]]\nname = \"a\"\nduration = 1e-3\n";
+  EXPECT_TRUE(same_scene_values(a, a));
+  EXPECT_TRUE(same_scene_values(a, "# a note\n[simulation]  # the run\nsteps   =   3\nfrac = 0.10\n\n[[stage]]\nname = \"a\"\nduration = 1.0e-3\n"));
+  EXPECT_FALSE(same_scene_values(a, "[simulation]\nfrac = 0.2\nsteps = 3\n[[stage]]\nname = \"a\"\nduration = 1e-3\n")) << "a value";
+  EXPECT_FALSE(same_scene_values(a, "[simulation]\nfrac = 0.1\nsteps = 3.0\n[[stage]]\nname = \"a\"\nduration = 1e-3\n")) << "a type";
+  EXPECT_FALSE(same_scene_values(a, "[simulation]\nfrac = 0.1\nsteps = 3\n[[stage]]\nname = \"a\"\nduration = 1e-3\nextra = 0\n")) << "a key";
+  EXPECT_FALSE(same_scene_values("g = [0.0, 0.0]\n", "g = [0.0, -0.0]\n")) << "the sign of a zero";
+  EXPECT_FALSE(same_scene_values("[[s]]\nn = 1\n[[s]]\nn = 2\n", "[[s]]\nn = 2\n[[s]]\nn = 1\n")) << "the order of stages";
+  EXPECT_FALSE(same_scene_values(a, "[simulation\n")) << "a text that does not parse";
+}
+
 }  // namespace
 }  // namespace dem
