@@ -271,8 +271,8 @@ template <class V, bool Couples, bool Ledger>
     if (touched[i] != stamp) {  // mere candidates only: zeros to add
       put(force[i], f);
       put(torque[i], zero);
-      if constexpr (Ledger) put(out.work[i].damping, zero), put(out.work[i].tangential, zero), put(out.work[i].torque_per_radius, zero),
-          put(out.work[i].couple, zero);
+      if constexpr (Ledger) put(out.work[i].damping, zero), put(out.work[i].tangential, zero), put(out.work[i].torque_per_radius, zero);
+      if constexpr (Ledger && Couples) put(out.work[i].couple, zero);
       continue;
     }
     V force_k, torque_k, damping_k, tangential_k;
@@ -295,8 +295,8 @@ template <class V, bool Couples, bool Ledger>
     put(force[i], f);
     if constexpr (Couples) put(torque[i], V(V(radius[i] * arm) + spin));
     else put(torque[i], V(radius[i] * arm));
-    if constexpr (Ledger)
-      put(out.work[i].damping, damping), put(out.work[i].tangential, tangential), put(out.work[i].torque_per_radius, arm), put(out.work[i].couple, spin);
+    if constexpr (Ledger) put(out.work[i].damping, damping), put(out.work[i].tangential, tangential), put(out.work[i].torque_per_radius, arm);
+    if constexpr (Ledger && Couples) put(out.work[i].couple, spin);  // without couples, never read (StepWorkInput::rolling)
   }
 }
 template <bool Couples, bool Ledger>

@@ -24,7 +24,7 @@ struct ParticleWork {
   LoadSum damping;            // Σ ± f_d n
   LoadSum tangential;         // Σ ± f_t
   LoadSum torque_per_radius;  // Σ n x f_t (times the radius: the contacts' torque)
-  LoadSum couple;             // Σ ± M (rolling resistance), else 0
+  LoadSum couple;             // Σ ± M (rolling resistance); written only where the law has couples
 };
 
 // What one step's forces did [J], each term exact (FixedSum): the same bits however the particles
@@ -75,11 +75,13 @@ inline void add_wall_contact_work(const ContactForce& f, const Vec3& n, const Ve
   pw.damping.v += damping;
   pw.tangential.v += f.tangential;
   pw.torque_per_radius.v += torque_per_radius;
-  pw.couple.v += f.couple;
   sums.damping.add(-damping.dot(v_wall) * dt);
   sums.tangential.add(-f.tangential.dot(v_wall) * dt);
   sums.walls.add(f.on_i.dot(v_wall) * dt);
-  if (f.couple != Vec3::Zero()) sums.walls.add(f.couple.dot(spin) * dt), sums.rolling.add(-f.couple.dot(spin) * dt);
+  if (f.couple != Vec3::Zero()) {  // only a law with couples makes one: then pw.couple was summed
+    pw.couple.v += f.couple;
+    sums.walls.add(f.couple.dot(spin) * dt), sums.rolling.add(-f.couple.dot(spin) * dt);
+  }
 }
 
 }  // namespace dem
