@@ -10,6 +10,7 @@
 //                              thread: LAWS is normal[+tangential[+rolling]], e.g. hertz+mindlin+cdt.
 //   contact_bench law-price LAWS bonded  the same with every contact bonded first (F = C = 1e-2 N,
 //                              as `variants`): what liu and mendes cost with their bonds
+//   contact_bench law-price LAWS [bonded] STEPS  STEPS steps in place of 100 (for timings)
 //                              Timing-independent under valgrind --tool=callgrind (instructions)
 // Prints markdown tables; bench/run_contact_bench.sh writes them to bench/results/contact.md.
 #include <omp.h>
@@ -17,6 +18,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <numbers>
 #include <random>
@@ -188,7 +190,7 @@ ModelChoice parse_laws(const std::string& text) {
   return m;
 }
 
-void law_price(const std::string& laws, bool bonded) {
+void law_price(const std::string& laws, bool bonded, int steps) {
   const ModelChoice models = parse_laws(laws);
   Material m = bead(0.5);
   m.law = models.normal, m.tangential = models.tangential, m.rolling = models.rolling;
@@ -216,7 +218,6 @@ void law_price(const std::string& laws, bool bonded) {
   sim.dt = 0.1 * sim.critical_time_step();
   if (bonded) sim.bond_present_contacts(false);
   omp_set_num_threads(1);
-  const int steps = 100;
   const auto t0 = std::chrono::steady_clock::now();
   for (int k = 0; k < steps; ++k) sim.advance();
   std::printf("%s%s: force loop %s, %zu pair contacts, %.0f ns per particle-step (1 thread)\n", laws.c_str(), bonded ? " bonded" : "",
@@ -227,14 +228,24 @@ void law_price(const std::string& laws, bool bonded) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if ((argc == 3 || (argc == 4 && std::strcmp(argv[3], "bonded") == 0)) && std::strcmp(argv[1], "law-price") == 0) {
-    law_price(argv[2], argc == 4);
+  if (argc >= 3 && std::strcmp(argv[1], "law-price") == 0) {
+    int next = 3;
+    const bool bonded = next < argc && std::strcmp(argv[next], "bonded") == 0;
+    next += bonded;
+    char* end = nullptr;
+    const long steps = next < argc ? std::strtol(argv[next], &end, 10) : 100;
+    if (next + 1 < argc || (next < argc && (*end != '\0' || steps < 1 || steps > 1000000))) {
+      std::fprintf(stderr, "contact_bench law-price LAWS [bonded] [STEPS]: STEPS '%s' must be a whole number from 1 to 1000000\n",
+                   argv[argc - 1]);
+      return 2;
+    }
+    law_price(argv[2], bonded, static_cast<int>(steps));
     return 0;
   }
   if (argc == 2 && std::strcmp(argv[1], "frac-sweep") == 0) frac_sweep();
   else if (argc == 2 && std::strcmp(argv[1], "variants") == 0) variants();
   else {
-    std::fprintf(stderr, "usage: contact_bench frac-sweep|variants|law-price LAWS [bonded]\n");
+    std::fprintf(stderr, "usage: contact_bench frac-sweep|variants|law-price LAWS [bonded] [STEPS]\n");
     return 2;
   }
   return 0;

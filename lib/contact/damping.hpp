@@ -123,8 +123,11 @@ template <class D, class P, class L, class M>
   const L parted(1e-300);
   // Where D3's M+ would part the spheres before the next step (which then would not take its share
   // -c M+): the M+ that leaves them touching by 1e-6 r at the next step, which then takes the rest.
+  // The division only where a lane needs it (almost never): the divider is the law's bottleneck.
   const auto lasting = [&](const L& inside, const L& r, const L& a2) {
-    return select(bonded, inside, select(less_or_equal(a2 * inside, r), inside, (r / a2) * L(1 - 1e-6)));
+    const M keep = either(bonded, less_or_equal(a2 * inside, r));
+    if (all(keep)) return inside;
+    return select(keep, inside, (r / a2) * L(1 - 1e-6));
   };
   if constexpr (D::constant) {
     const L c_n = D::coefficient(p, k);

@@ -6,11 +6,12 @@
 //
 // The plain version is three loops in force_loop.cpp (any model); a model whose sub-models are all
 // written over lanes (ContactModel::four_wide: every normal law, with either tangential law and
-// any rolling law; contact/contact_law.hpp, simd/lanes.hpp) also runs four contacts at a time with
-// AVX2 here: the same source, so the same bits. A template here, instantiated by force_loop.cpp
+// any rolling law; contact/contact_law.hpp, simd/lanes.hpp) also runs eight contacts at a time,
+// as two sets of four lanes, with AVX2 here: the same source, so the same bits. A template here, instantiated by force_loop.cpp
 // for the models it compiles (so that the two lists cannot disagree).
 #include <algorithm>
 #include <cstdint>
+#include <type_traits>
 
 #include "contact/contact_law.hpp"
 #include "contact/contact_list.hpp"
@@ -76,31 +77,43 @@ using V3 = lanes::Triple<Lanes4>;
 
 DEM_AVX2_INLINE V3 load3(const double* x, const double* y, const double* z) { return {simd::load(x), simd::load(y), simd::load(z)}; }
 DEM_AVX2_INLINE V3 load_four(const Vec3* base, const int (&slot)[4]) { return simd::load_four(base, slot[0], slot[1], slot[2], slot[3]); }
-// One field of four lanes' pair parameters.
-DEM_AVX2_INLINE Lanes4 param(const PairParams* const (&pp)[4], double PairParams::*field) {
-  return lanes::lanes4(pp[0]->*field, pp[1]->*field, pp[2]->*field, pp[3]->*field);
-}
-// One flag of four lanes' pair parameters.
-DEM_AVX2_INLINE Mask4 flag(const PairParams* const (&pp)[4], bool PairParams::*field) {
-  return lanes::mask4(pp[0]->*field, pp[1]->*field, pp[2]->*field, pp[3]->*field);
-}
-// What the laws read of four lanes' pair parameters, by PairParams' names (contact/contact_law.hpp);
-// a model's loop reads only its own (the rest are never loaded).
-struct LawParams {
-  Lanes4 kn, kt, mu, damping_n, damping_t, cohesion;
-  Lanes4 tensile_strength, mendes_D, mendes_A, break_separation;
-  Lanes4 hertz_modulus, hertz_damping, mindlin_modulus, mindlin_damping, rolling_friction;
-  Mask4 no_viscous_attraction, mendes_tension;
-  DEM_AVX2_INLINE explicit LawParams(const PairParams* const (&pp)[4])
-      : kn(param(pp, &PairParams::kn)), kt(param(pp, &PairParams::kt)), mu(param(pp, &PairParams::mu)),
-        damping_n(param(pp, &PairParams::damping_n)), damping_t(param(pp, &PairParams::damping_t)),
-        cohesion(param(pp, &PairParams::cohesion)), tensile_strength(param(pp, &PairParams::tensile_strength)),
-        mendes_D(param(pp, &PairParams::mendes_D)), mendes_A(param(pp, &PairParams::mendes_A)),
-        break_separation(param(pp, &PairParams::break_separation)), hertz_modulus(param(pp, &PairParams::hertz_modulus)),
-        hertz_damping(param(pp, &PairParams::hertz_damping)), mindlin_modulus(param(pp, &PairParams::mindlin_modulus)),
-        mindlin_damping(param(pp, &PairParams::mindlin_damping)), rolling_friction(param(pp, &PairParams::rolling_friction)),
-        no_viscous_attraction(flag(pp, &PairParams::no_viscous_attraction)), mendes_tension(flag(pp, &PairParams::mendes_tension)) {}
+// What the laws read of the pair parameters of four lanes (L = Lanes4) or eight (Two<Lanes4>), by
+// PairParams' names (contact/contact_law.hpp); a model's loop reads only its own (the rest are
+// never loaded).
+template <class L, class M>
+struct LawParamsOf {
+  L kn, kt, mu, damping_n, damping_t, cohesion;
+  L tensile_strength, mendes_D, mendes_A, break_separation;
+  L hertz_modulus, hertz_damping, mindlin_modulus, mindlin_damping, rolling_friction;
+  M no_viscous_attraction, mendes_tension;
+  // f(field, the same field of each of `from`) for every field: the one list of them.
+  template <class F, class... From>
+  DEM_AVX2_INLINE void each(F f, const From&... from) {
+    f(kn, from.kn...), f(kt, from.kt...), f(mu, from.mu...), f(damping_n, from.damping_n...), f(damping_t, from.damping_t...);
+    f(cohesion, from.cohesion...), f(tensile_strength, from.tensile_strength...), f(mendes_D, from.mendes_D...);
+    f(mendes_A, from.mendes_A...), f(break_separation, from.break_separation...), f(hertz_modulus, from.hertz_modulus...);
+    f(hertz_damping, from.hertz_damping...), f(mindlin_modulus, from.mindlin_modulus...), f(mindlin_damping, from.mindlin_damping...);
+    f(rolling_friction, from.rolling_friction...), f(no_viscous_attraction, from.no_viscous_attraction...);
+    f(mendes_tension, from.mendes_tension...);
+  }
 };
+using LawParams = LawParamsOf<Lanes4, Mask4>;
+using LawParamsTwo = LawParamsOf<lanes::Two<Lanes4>, lanes::Two<Mask4>>;
+// Four lanes' parameters, from each lane's pair.
+DEM_AVX2_INLINE LawParams law_params(const PairParams* const (&pp)[4]) {
+  LawParams p;
+  p.each([](auto& lanes, const auto& a, const auto& b, const auto& c, const auto& d) DEM_AVX2_LAMBDA {
+    if constexpr (std::is_same_v<std::decay_t<decltype(a)>, bool>) lanes = lanes::mask4(a, b, c, d);
+    else lanes = lanes::lanes4(a, b, c, d);
+  }, *pp[0], *pp[1], *pp[2], *pp[3]);
+  return p;
+}
+// Eight lanes' parameters: four and four.
+DEM_AVX2_INLINE LawParamsTwo law_params(const LawParams& lo, const LawParams& hi) {
+  LawParamsTwo p;
+  p.each([](auto& lanes, const auto& a, const auto& b) DEM_AVX2_LAMBDA { lanes = {a, b}; }, lo, hi);
+  return p;
+}
 // What the first `count` of four contacts (k) leave: keep_pair_result's, the dashpot's mark and,
 // with Couples, the rolling couple, lane by lane; each vector written with one masked store of its
 // three doubles (nothing written past it), all in one loop (one loop's overhead, not several).
@@ -125,9 +138,20 @@ DEM_AVX2_INLINE void keep_results(const PairLawArrays& a, const int (&k)[4], int
   }
 }
 
+// Four contacts as the law takes them: their slots, kinematics and histories.
+struct FourContacts {
+  int k[4], i[4], j[4];
+  LaneKinematics<Lanes4> c;
+  V3 spring, rolling;
+  Lanes4 mark;
+  Mask4 bonded;
+  Lanes4 ri, rj;
+};
+
 // The kinematics of force_loop.cpp's plain pass 2 and the law of contact/contact_law.hpp with
-// Model, four contacts at a time (L = Lanes4): the same operations in the same order. The law and
-// the lane operations are always inlined here, where AVX2 is allowed.
+// Model, eight contacts at a time (L = Two<Lanes4>; the last four or fewer with L = Lanes4): the
+// same operations in the same order. The law and the lane operations are always inlined here,
+// where AVX2 is allowed.
 template <class Model, bool Fixed, bool Bonds>
 DEM_AVX2 double pair_law(const PairLawArrays a, const MaterialTable& materials, double dt, const FoundInChunk found, int m) {
   using Tangential = typename Model::TangentialModel;
@@ -138,17 +162,18 @@ DEM_AVX2 double pair_law(const PairLawArrays a, const MaterialTable& materials, 
     found.contact[q] = found.contact[m - 1], found.dx[q] = found.dx[m - 1], found.dy[q] = found.dy[m - 1], found.dz[q] = found.dz[m - 1];
   // One material: the same parameters for every contact, set once.
   const PairParams* only[4] = {&materials.pair(0, 0), &materials.pair(0, 0), &materials.pair(0, 0), &materials.pair(0, 0)};
-  LawParams law(only);
+  LawParams law = law_params(only), law_hi = law;
   // The materials of i and j in each lane whose pair `law` holds: reread only where they change
   // (almost never: a scene of few materials has runs of contacts of one pair).
   const bool many_materials = materials.size() > 1;
-  simd::Ints4 law_i{}, law_j{};
+  simd::Ints4 law_i{}, law_j{}, law_hi_i{}, law_hi_j{};
   double worst = 0;
   // Fetched into the cache ahead: the velocities of both particles of the contacts kAhead on (pass
   // 1 read only their positions), where a random packing's particles no longer fit the core's
   // cache (bench/results).
   constexpr int kAhead = 8;
-  for (int e = 0; e < m; e += 4) {
+  // The kinematics and histories of the four contacts from e on, and their parameters in lp.
+  const auto take = [&](int e, FourContacts& g, LawParams& lp, simd::Ints4& lp_i, simd::Ints4& lp_j) DEM_AVX2_LAMBDA {
     if (e + kAhead + 4 <= m)
       for (int l = 0; l < 4; ++l) {
         const long ahead = found.contact[e + kAhead + l];
@@ -160,18 +185,16 @@ DEM_AVX2 double pair_law(const PairLawArrays a, const MaterialTable& materials, 
       }
     const simd::Ints4 k = simd::load(found.contact + e);
     const simd::Ints4 i = simd::gather(a.slot_i, k), j = simd::gather(a.slot_j, k);
-    alignas(16) int kl[4], il[4], jl[4];
-    simd::store_aligned(kl, k), simd::store_aligned(il, i), simd::store_aligned(jl, j);
-
-    // Kinematics (eq. 2.11-2.12).
-    LaneKinematics<Lanes4> c;
+    simd::store_aligned(g.k, k), simd::store_aligned(g.i, i), simd::store_aligned(g.j, j);
+    LaneKinematics<Lanes4>& c = g.c;
     const V3 d = load3(found.dx + e, found.dy + e, found.dz + e);
     const Lanes4 dist = lanes::root(dot(d, d));
     c.n = d * (Lanes4(1.0) / dist);
     const Lanes4 ri = simd::gather(a.radius, i), rj = simd::gather(a.radius, j);
+    g.ri = ri, g.rj = rj;
     c.overlap = (ri + rj) - dist;
-    c.v_rel = load_four(a.v, jl) - load_four(a.v, il);
-    const V3 wi = load_four(a.w, il), wj = load_four(a.w, jl);
+    c.v_rel = load_four(a.v, g.j) - load_four(a.v, g.i);
+    const V3 wi = load_four(a.w, g.i), wj = load_four(a.w, g.j);
     c.w_arm = rj * wj + ri * wi;
     if constexpr (Model::has_rolling) c.w_rel = wi - wj;
     const Lanes4 mi = simd::gather(a.mass, i), mj = simd::gather(a.mass, j);
@@ -179,39 +202,73 @@ DEM_AVX2 double pair_law(const PairLawArrays a, const MaterialTable& materials, 
     c.r_eff = (ri * rj) / (ri + rj);  // eq. H3 (a law that reads none: compiled away)
     if constexpr (Fixed) {  // effective_mass: against a fixed particle, the other's mass
       const std::uint8_t* fixed = a.fixed;
-      c.m_eff = lanes::select(lanes::mask4(fixed[il[0]], fixed[il[1]], fixed[il[2]], fixed[il[3]]), mj,
-                              lanes::select(lanes::mask4(fixed[jl[0]], fixed[jl[1]], fixed[jl[2]], fixed[jl[3]]), mi, c.m_eff));
+      c.m_eff = lanes::select(lanes::mask4(fixed[g.i[0]], fixed[g.i[1]], fixed[g.i[2]], fixed[g.i[3]]), mj,
+                              lanes::select(lanes::mask4(fixed[g.j[0]], fixed[g.j[1]], fixed[g.j[2]], fixed[g.j[3]]), mi, c.m_eff));
     }
     if (many_materials) {
       const simd::Ints4 mat_i = simd::gather(a.material, i), mat_j = simd::gather(a.material, j);
-      if (!(simd::same(mat_i, law_i) && simd::same(mat_j, law_j))) {
+      if (!(simd::same(mat_i, lp_i) && simd::same(mat_j, lp_j))) {
         alignas(16) int ml_i[4], ml_j[4];
         simd::store_aligned(ml_i, mat_i), simd::store_aligned(ml_j, mat_j);
         const PairParams* pp[4];
         for (int l = 0; l < 4; ++l) pp[l] = &materials.pair(ml_i[l], ml_j[l]);
-        law = LawParams(pp), law_i = mat_i, law_j = mat_j;
+        lp = law_params(pp), lp_i = mat_i, lp_j = mat_j;
       }
     }
     // Without bonds (Bonds false: no contact of the scene holds one) every lane's flag is false.
-    Mask4 bonded = Bonds ? lanes::mask4(a.bonded[kl[0]], a.bonded[kl[1]], a.bonded[kl[2]], a.bonded[kl[3]]) : Mask4{};
-    V3 spring = Tangential::in_tangent_plane(load_four(a.spring, kl), c.n);
-    V3 rolling{};
-    if constexpr (kRollingHistory) rolling = Tangential::in_tangent_plane(load_four(a.rolling, kl), c.n);
-    Lanes4 mark = simd::gather(a.dashpot, k);
-    const LaneForce<Lanes4> f = Model::evaluate_in_plane(law, c, dt, spring, bonded, mark, rolling);  // clears bonded where a bond breaks
-
-    const int count = std::min(4, m - e);
-    keep_results<Model::has_rolling>(a, kl, count, spring, c.n, f, mark);
+    g.bonded = Bonds ? lanes::mask4(a.bonded[g.k[0]], a.bonded[g.k[1]], a.bonded[g.k[2]], a.bonded[g.k[3]]) : Mask4{};
+    g.spring = Tangential::in_tangent_plane(load_four(a.spring, g.k), c.n);
+    g.rolling = V3{};
+    if constexpr (kRollingHistory) g.rolling = Tangential::in_tangent_plane(load_four(a.rolling, g.k), c.n);
+    g.mark = simd::gather(a.dashpot, k);
+  };
+  // What the first `count` of them leave.
+  const auto keep = [&](const FourContacts& g, int count, const LaneForce<Lanes4>& f, const V3& spring, const Lanes4& mark,
+                        const Mask4& bonded) DEM_AVX2_LAMBDA {
+    keep_results<Model::has_rolling>(a, g.k, count, spring, g.c.n, f, mark);
     if constexpr (Bonds)
-      for (int l = 0; l < count; ++l) a.bonded[kl[l]] = bonded.v[l] != 0;
-    // relative_overlap_if_larger's test on every lane with the group's first `worst`: where no lane
-    // passes, none can with the larger values the loop below may reach (almost every group).
-    const Lanes4 bar = (simd::broadcast(worst) * simd::min(ri, rj)) * simd::broadcast(1 - 1e-9);
-    if (simd::bits(simd::greater_or_equal(c.overlap, bar)) != 0) {
+      for (int l = 0; l < count; ++l) a.bonded[g.k[l]] = bonded.v[l] != 0;
+    // relative_overlap_if_larger's test on every lane with the four's first `worst`: where no lane
+    // passes, none can with the larger values the loop below may reach (almost every four).
+    const Lanes4 bar = (simd::broadcast(worst) * simd::min(g.ri, g.rj)) * simd::broadcast(1 - 1e-9);
+    if (simd::bits(simd::greater_or_equal(g.c.overlap, bar)) != 0) {
       alignas(32) double u[4];
-      simd::store_aligned(u, c.overlap);
+      simd::store_aligned(u, g.c.overlap);
       for (int l = 0; l < count; ++l)
-        worst = std::max(worst, relative_overlap_if_larger(u[l], std::min(a.radius[il[l]], a.radius[jl[l]]), worst));
+        worst = std::max(worst, relative_overlap_if_larger(u[l], std::min(a.radius[g.i[l]], a.radius[g.j[l]]), worst));
+    }
+  };
+  using T = lanes::Two<Lanes4>;
+  using lanes::high;
+  using lanes::low;
+  for (int e = 0; e < m;) {
+    if (e + 4 < m) {  // eight: two fours, the second with at least one contact
+      alignas(32) FourContacts g, h;
+      take(e, g, law, law_i, law_j);
+      take(e + 4, h, law_hi, law_hi_i, law_hi_j);
+      LaneKinematics<T> c;
+      c.n = lanes::two(g.c.n, h.c.n), c.overlap = T(g.c.overlap, h.c.overlap), c.v_rel = lanes::two(g.c.v_rel, h.c.v_rel);
+      c.w_arm = lanes::two(g.c.w_arm, h.c.w_arm), c.m_eff = T(g.c.m_eff, h.c.m_eff), c.r_eff = T(g.c.r_eff, h.c.r_eff);
+      if constexpr (Model::has_rolling) c.w_rel = lanes::two(g.c.w_rel, h.c.w_rel);
+      lanes::Triple<T> spring = lanes::two(g.spring, h.spring), rolling = lanes::two(g.rolling, h.rolling);
+      lanes::Two<Mask4> bonded{g.bonded, h.bonded};
+      T mark(g.mark, h.mark);
+      const LawParamsTwo lp = law_params(law, law_hi);
+      const LaneForce<T> f = Model::evaluate_in_plane(lp, c, dt, spring, bonded, mark, rolling);
+      const LaneForce<Lanes4> f_lo{low(f.on_i), low(f.tangential), low(f.couple), f.normal.lo, f.elastic.lo};
+      const LaneForce<Lanes4> f_hi{high(f.on_i), high(f.tangential), high(f.couple), f.normal.hi, f.elastic.hi};
+      keep(g, 4, f_lo, low(spring), mark.lo, bonded.lo);
+      keep(h, std::min(4, m - e - 4), f_hi, high(spring), mark.hi, bonded.hi);
+      e += 8;
+    } else {
+      alignas(32) FourContacts g;
+      take(e, g, law, law_i, law_j);
+      Mask4 bonded = g.bonded;
+      V3 spring = g.spring, rolling = g.rolling;
+      Lanes4 mark = g.mark;
+      const LaneForce<Lanes4> f = Model::evaluate_in_plane(law, g.c, dt, spring, bonded, mark, rolling);
+      keep(g, std::min(4, m - e), f, spring, mark, bonded);
+      e += 4;
     }
   }
   return worst;

@@ -2,7 +2,7 @@
 // Lane types, so that a law is written once and runs one contact at a time or four at a time:
 // code written over a lane type L (double, or Lanes4: four doubles in an AVX2 register) with its
 // mask type (bool, or Mask4) and selections in place of branches is the plain path with
-// L = double and the four-wide path with L = Lanes4. Each operation rounds alike in a lane and in
+// L = double and the four-wide path with L = Lanes4 (or Two<Lanes4>, two sets of four). Each operation rounds alike in a lane and in
 // a scalar register (IEEE 754; no fused multiply-add is contracted), so both give the same bits.
 //
 // A four-wide caller is a [[gnu::target("avx2")]] function (DEM_AVX2, simd.hpp); the law and the
@@ -112,6 +112,43 @@ DEM_LANE Lanes4 load4(const double* p) {
 DEM_LANE void store4(double* p, Lanes4 a) { __builtin_memcpy(p, &a.v, sizeof a.v); }
 // Lanes 1, 2, 3 moved down to 0, 1, 2 (lane 3 keeps its own).
 DEM_LANE Lanes4 shift_down(Lanes4 a) { return __builtin_shufflevector(a.v, a.v, 1, 2, 3, 3); }
+
+// Two sets of lanes side by side (Two<Lanes4>: eight contacts in two registers), each operation
+// done on both halves one after the other. The law is a long chain of dependent square roots and
+// divisions; two independent halves interleaved keep the divider busy with one while the other
+// waits (bench/results/design.md). Each lane rounds as in Lanes4, so the bits are the same.
+template <class L>
+struct Two {
+  L lo, hi;
+  Two() = default;
+  DEM_LANE Two(const L& a, const L& b) : lo(a), hi(b) {}
+  DEM_LANE Two(double a) : lo(a), hi(a) {}
+};
+template <class L> DEM_LANE Two<L> operator+(const Two<L>& a, const Two<L>& b) { return {a.lo + b.lo, a.hi + b.hi}; }
+template <class L> DEM_LANE Two<L> operator-(const Two<L>& a, const Two<L>& b) { return {a.lo - b.lo, a.hi - b.hi}; }
+template <class L> DEM_LANE Two<L> operator*(const Two<L>& a, const Two<L>& b) { return {a.lo * b.lo, a.hi * b.hi}; }
+template <class L> DEM_LANE Two<L> operator/(const Two<L>& a, const Two<L>& b) { return {a.lo / b.lo, a.hi / b.hi}; }
+template <class L> DEM_LANE Two<L> operator-(const Two<L>& a) { return {-a.lo, -a.hi}; }
+DEM_LANE Two<Mask4> less(const Two<Lanes4>& a, const Two<Lanes4>& b) { return {less(a.lo, b.lo), less(a.hi, b.hi)}; }
+DEM_LANE Two<Mask4> less_or_equal(const Two<Lanes4>& a, const Two<Lanes4>& b) {
+  return {less_or_equal(a.lo, b.lo), less_or_equal(a.hi, b.hi)};
+}
+DEM_LANE Two<Mask4> equal(const Two<Lanes4>& a, const Two<Lanes4>& b) { return {equal(a.lo, b.lo), equal(a.hi, b.hi)}; }
+DEM_LANE Two<Mask4> both(const Two<Mask4>& a, const Two<Mask4>& b) { return {both(a.lo, b.lo), both(a.hi, b.hi)}; }
+DEM_LANE Two<Mask4> either(const Two<Mask4>& a, const Two<Mask4>& b) { return {either(a.lo, b.lo), either(a.hi, b.hi)}; }
+DEM_LANE Two<Mask4> but_not(const Two<Mask4>& a, const Two<Mask4>& b) { return {but_not(a.lo, b.lo), but_not(a.hi, b.hi)}; }
+DEM_LANE Two<Lanes4> select(const Two<Mask4>& w, const Two<Lanes4>& a, const Two<Lanes4>& b) {
+  return {select(w.lo, a.lo, b.lo), select(w.hi, a.hi, b.hi)};
+}
+DEM_LANE Two<Lanes4> only_where(const Two<Mask4>& w, const Two<Lanes4>& a) { return {only_where(w.lo, a.lo), only_where(w.hi, a.hi)}; }
+DEM_LANE Two<Lanes4> zero_where(const Two<Mask4>& w, const Two<Lanes4>& a) { return {zero_where(w.lo, a.lo), zero_where(w.hi, a.hi)}; }
+DEM_LANE Two<Lanes4> root(const Two<Lanes4>& a) { return {root(a.lo), root(a.hi)}; }
+DEM_LANE Two<Lanes4> exp_where(const Two<Mask4>& w, const Two<Lanes4>& a) { return {exp_where(w.lo, a.lo), exp_where(w.hi, a.hi)}; }
+DEM_LANE bool all(const Two<Mask4>& w) { return all(w.lo) && all(w.hi); }
+
+template <class L> DEM_LANE Triple<Two<L>> two(const Triple<L>& a, const Triple<L>& b) { return {{a.x, b.x}, {a.y, b.y}, {a.z, b.z}}; }
+template <class L> DEM_LANE Triple<L> low(const Triple<Two<L>>& a) { return {a.x.lo, a.y.lo, a.z.lo}; }
+template <class L> DEM_LANE Triple<L> high(const Triple<Two<L>>& a) { return {a.x.hi, a.y.hi, a.z.hi}; }
 
 #undef DEM_LANE
 #endif

@@ -8,7 +8,8 @@
 // no fused multiply-add is enabled, so none is contracted). Their operations are the layer's:
 // lanes.hpp (lane types and arithmetic), lanes_avx2.hpp (what needs AVX2 instructions of its
 // own), memory.hpp (loads, stores, gathers), layout.hpp (four vectors' layouts in registers).
-// (AVX-512, eight lanes, was tried for the law: slower, same bits; bench/results/design.md.)
+// (AVX-512, eight lanes in one register, was tried for the law: slower on an Intel Xeon, same bits;
+// eight as two AVX2 registers interleaved is faster: bench/results/design.md.)
 
 namespace dem {
 
@@ -26,4 +27,6 @@ void set_simd_loops(bool on); // on unless DEM_SIMD=off; tests turn it off to co
 // An operation of the layer: always inlined into its four-wide caller (a 32-byte vector passed by
 // value to a function of another target would change the calling convention).
 #define DEM_AVX2_INLINE [[gnu::target("avx2"), gnu::always_inline]] inline
+// A lambda inside a four-wide loop (a lambda does not take its enclosing function's target).
+#define DEM_AVX2_LAMBDA __attribute__((target("avx2"), always_inline))
 #endif
