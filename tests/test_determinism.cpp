@@ -118,8 +118,9 @@ Simulation make_pressed_lattice(bool x_walls = false) {
 // neither the storage order nor the thread count changes a bit. The pressed lattice, stored as
 // built (never sorted), shuffled (never sorted), and shuffled and sorted along the cells every 7
 // steps, on one, two and three threads, with blocks of 16 slots and of 256, ends with the same
-// bits particle by particle (matched by id), with periodic axes and with walls. The scene can
-// tell: each sphere's six contact forces summed in another order give other bits for some sphere.
+// bits particle by particle (matched by id), with periodic axes and with walls (and each wall's
+// load the same bits). The scene can tell: each sphere's six contact forces summed in another
+// order give other bits for some sphere.
 TEST(Determinism, StorageOrderAndThreadsChangeNoBit) {
   const int threads_before = omp_get_max_threads();
   constexpr int kSteps = 60;
@@ -162,6 +163,12 @@ TEST(Determinism, StorageOrderAndThreadsChangeNoBit) {
             EXPECT_TRUE(same_bits(by_id(one, one.particles.v), by_id(s, s.particles.v))) << what;
             EXPECT_TRUE(same_bits(by_id(one, one.particles.w), by_id(s, s.particles.w))) << what;
             EXPECT_TRUE(same_bits(one.pair_contacts().spring, s.pair_contacts().spring)) << what;
+            if (walls) {  // each wall's load (the wall log, a servo) summed in key order: wall candidates are stored by slot
+              std::vector<Vec3> f_one, f_s;
+              for (const WallLoad& l : one.wall_loads(false)) f_one.push_back(l.force);
+              for (const WallLoad& l : s.wall_loads(false)) f_s.push_back(l.force);
+              EXPECT_TRUE(same_bits(f_one, f_s)) << what;
+            }
           }
   }
   omp_set_num_threads(threads_before);

@@ -61,15 +61,31 @@ void ContactList::push_back_from(const ContactList& from, std::size_t k) {
   sum.push_back(from.sum[k]);
 }
 
-void place_by_storage(const std::vector<FoundContact>& found, std::size_t particles, std::vector<int>& count,
-                      KeyOrder& place) {
-  // A counting sort by the smaller slot: O(candidates + particles), and stable (key order within a
-  // group), so the places depend on the storage order only, never on the thread count.
+namespace {
+
+// A counting sort of `found` by group(f), a storage slot: O(candidates + particles), and stable
+// (key order within a group), so the places depend on the storage order only, never on the
+// thread count.
+template <class Group>
+void place_by_group(const std::vector<FoundContact>& found, std::size_t particles, std::vector<int>& count, KeyOrder& place,
+                    Group group) {
   count.assign(particles + 1, 0);
-  for (const FoundContact& f : found) ++count[std::min(f.slot_i, f.slot_j) + 1];
+  for (const FoundContact& f : found) ++count[group(f) + 1];
   for (std::size_t s = 0; s < particles; ++s) count[s + 1] += count[s];
   place.resize(found.size());
-  for (std::size_t r = 0; r < found.size(); ++r) place[r] = count[std::min(found[r].slot_i, found[r].slot_j)]++;
+  for (std::size_t r = 0; r < found.size(); ++r) place[r] = count[group(found[r])]++;
+}
+
+}  // namespace
+
+void place_by_storage(const std::vector<FoundContact>& found, std::size_t particles, std::vector<int>& count,
+                      KeyOrder& place) {
+  place_by_group(found, particles, count, place, [](const FoundContact& f) { return std::min(f.slot_i, f.slot_j); });
+}
+
+void place_walls_by_storage(const std::vector<FoundContact>& found, std::size_t particles, std::vector<int>& count,
+                            KeyOrder& place) {
+  place_by_group(found, particles, count, place, [](const FoundContact& f) { return f.slot_i; });
 }
 
 namespace {

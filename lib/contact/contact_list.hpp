@@ -55,10 +55,10 @@ struct FoundContact {
 };
 
 // Where a list's entries are stored, in key order: by_key[r] is the position of the entry with the
-// r-th smallest key. Empty: the list is stored in key order (a list read from a checkpoint, the
-// wall list). Pair lists are stored along the particles' storage order instead (place_by_storage),
-// so that the force loop reads neighbouring particles; every sum walks them in key order, so no
-// result depends on where an entry is stored.
+// r-th smallest key. Empty: the list is stored in key order (a list read from a checkpoint).
+// Candidate lists are stored along the particles' storage order instead (place_by_storage,
+// place_walls_by_storage), so that the force loop reads its lists in the order it visits the
+// particles; every sum walks them in key order, so no result depends on where an entry is stored.
 using KeyOrder = std::vector<int>;
 
 // Positions for the candidates in `found` (sorted by key) along the particles' storage order:
@@ -66,6 +66,10 @@ using KeyOrder = std::vector<int>;
 // storage kept by the caller; `particles` the number of storage slots.
 void place_by_storage(const std::vector<FoundContact>& found, std::size_t particles, std::vector<int>& count,
                       KeyOrder& place);
+// The same for wall candidates (slot_j a wall's index): grouped by the particle's slot, so that
+// each particle's wall candidates form one run, in key order (the wall index).
+void place_walls_by_storage(const std::vector<FoundContact>& found, std::size_t particles, std::vector<int>& count,
+                            KeyOrder& place);
 
 // Makes `list` hold exactly the candidates in `found` (sorted by key), the r-th stored at position
 // place[r] (empty `place`: at r), each carrying its history (spring, bond) from the entry of `list`

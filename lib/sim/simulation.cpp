@@ -125,7 +125,7 @@ const ContactList& Simulation::pair_contacts() const {
 
 const ContactList& Simulation::wall_contacts() const {
   if (!wall_view_current_) {
-    active_contacts(walls_, {}, wall_view_);
+    active_contacts(walls_, wall_by_key_, wall_view_);
     wall_view_current_ = true;
   }
   return wall_view_;
@@ -145,7 +145,7 @@ void Simulation::contacts_modified() { pair_view_current_ = wall_view_current_ =
 void Simulation::set_contacts(ContactList pairs, ContactList walls) {
   pairs_ = std::move(pairs);
   walls_ = std::move(walls);
-  pair_by_key_.clear();  // given in key order
+  pair_by_key_.clear(), wall_by_key_.clear();  // given in key order
   pair_by_key_current_ = true;
   pair_results_kept_ = true;  // those given
   for (ContactList* c : {&pairs_, &walls_}) {
@@ -187,9 +187,11 @@ void Simulation::report_overlap(double worst) const {
     if (pairs_.active[k] && pair_overlap(k) == largest)
       m << "between particles " << p.id[pairs_.slot_i[k]] << " and " << p.id[pairs_.slot_j[k]] << ", ";
   }
-  for (std::size_t k = 0; k < walls_.size(); ++k)
+  for (std::size_t r = 0; r < walls_.size(); ++r) {
+    const int k = key_rank_to_position(wall_by_key_, r);
     if (walls_.active[k] && wall_overlap(k) == largest)
       m << "between particle " << p.id[walls_.slot_i[k]] << " and wall " << walls[walls_.slot_j[k]].name << ", ";
+  }
   m << "with dt = " << dt << " s against the critical " << critical_time_step()
     << " s of docs/physics.md eq. P5";
   throw PhysicsError(m.str(), "lower the time step (frac), raise the stiffness kn, or lower the load or impact speed");
@@ -308,8 +310,8 @@ void Simulation::find_contacts() {
   update_wall_geometry();
   if (!neighbours_.update(particles, periodic, wall_geometry_, margin, skin())) return;
   // New candidates: carry the history over by key; which pairs touch is decided by the force loop.
-  // Pairs are stored along the particles' storage order (locality when the storage is sorted), as
-  // the search finds them, wall candidates in key order (each particle's form one run, in id order).
+  // Both lists are stored along the particles' storage order (locality when the storage is sorted):
+  // pairs as the search finds them, wall candidates each particle's in one run, in key order.
   if (carry_history_in_groups(pairs_, neighbours_.pairs(), neighbours_.pair_groups(), particles.id, carry_from_)) {
     pair_by_key_current_ = false;
   } else {  // the slots changed since the last build: carry by key (a sort of the candidates)
@@ -318,8 +320,8 @@ void Simulation::find_contacts() {
     place_by_storage(neighbours_.pairs(), particles.size(), place_count_, pair_place_);
     carry_history(pairs_, old_by_key, neighbours_.pairs(), pair_place_, carry_from_);
   }
-  KeyOrder in_key_order;  // empty
-  carry_history(walls_, in_key_order, neighbours_.wall_pairs(), in_key_order, carry_from_);
+  place_walls_by_storage(neighbours_.wall_pairs(), particles.size(), place_count_, wall_place_);
+  carry_history(walls_, wall_by_key_, neighbours_.wall_pairs(), wall_place_, carry_from_);
   neighbours_.release_found();  // carried over: free the memory until the next rebuild
   index_contacts_per_particle();
 }
@@ -395,8 +397,8 @@ void Simulation::index_contacts_per_particle() {
   }
   needed_from_.resize(blocks);
   for (long b = blocks - 1, least = blocks; b >= 0; --b) needed_from_[b] = least = std::min(least, block_needs_[b]);
-  // Wall candidates are sorted by particle id: each particle's form one run, taken together by the
-  // wall force loop (where mesh elements meet, one touch must count once).
+  // Wall candidates are grouped by particle slot: each particle's form one run, taken together by
+  // the wall force loop (where mesh elements meet, one touch must count once).
   wall_runs_.clear();
   for (long k = 0; k < nwc; ++k)
     if (k == 0 || walls_.key_i[k] != walls_.key_i[k - 1]) wall_runs_.push_back(static_cast<int>(k));
@@ -578,7 +580,8 @@ double Simulation::kinetic_energy() const {
 // which need the particle's slot, are for after a step.
 std::vector<WallLoad> Simulation::wall_loads(bool torques) const {
   std::vector<WallLoad> load(walls.size());
-  for (std::size_t k = 0; k < walls_.size(); ++k) {
+  for (std::size_t r = 0; r < walls_.size(); ++r) {  // in key order: the same bits for any storage order
+    const int k = key_rank_to_position(wall_by_key_, r);
     if (!walls_.active[k]) continue;
     WallLoad& l = load[walls_.key_j[k]];
     const Vec3 f = -walls_.force(k);

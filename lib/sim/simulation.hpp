@@ -200,6 +200,8 @@ class Simulation {
   mutable KeyOrder pair_by_key_;
   mutable bool pair_by_key_current_ = true;
   KeyOrder pair_place_;   // working storage of place_by_storage and carry_history
+  KeyOrder wall_by_key_;  // where walls_ holds its entries in key order (empty: in key order)
+  KeyOrder wall_place_;   // working storage of place_walls_by_storage and carry_history
   std::vector<int> place_count_;
   std::vector<int> carry_from_;  // working storage of carry_history
   mutable ContactList pair_view_, wall_view_;  // pair_contacts(), wall_contacts()
