@@ -10,8 +10,8 @@
 //                              thread: LAWS is normal[+tangential[+rolling]], e.g. hertz+mindlin+cdt.
 //   contact_bench law-price LAWS bonded  the same with every contact bonded first (F = C = 1e-2 N,
 //                              as `variants`): what liu and mendes cost with their bonds
-//   contact_bench law-price LAWS [bonded] STEPS  STEPS steps in place of 100 (for timings)
 //                              Timing-independent under valgrind --tool=callgrind (instructions)
+//   contact_bench law-price LAWS [bonded] STEPS  STEPS steps in place of 100 (for timings)
 // Prints markdown tables; bench/run_contact_bench.sh writes them to bench/results/contact.md.
 #include <omp.h>
 

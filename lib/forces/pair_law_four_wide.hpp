@@ -7,8 +7,8 @@
 // The plain version is three loops in force_loop.cpp (any model); a model whose sub-models are all
 // written over lanes (ContactModel::four_wide: every normal law, with either tangential law and
 // any rolling law; contact/contact_law.hpp, simd/lanes.hpp) also runs eight contacts at a time,
-// as two sets of four lanes, with AVX2 here: the same source, so the same bits. A template here, instantiated by force_loop.cpp
-// for the models it compiles (so that the two lists cannot disagree).
+// as two sets of four lanes, with AVX2 here: the same source, so the same bits. A template here,
+// instantiated by force_loop.cpp for the models it compiles (so that the two lists cannot disagree).
 #include <algorithm>
 #include <cstdint>
 #include <type_traits>
@@ -163,6 +163,7 @@ DEM_AVX2 double pair_law(const PairLawArrays a, const MaterialTable& materials, 
   // One material: the same parameters for every contact, set once.
   const PairParams* only[4] = {&materials.pair(0, 0), &materials.pair(0, 0), &materials.pair(0, 0), &materials.pair(0, 0)};
   LawParams law = law_params(only), law_hi = law;
+  LawParamsTwo law_eight = law_params(law, law_hi);  // both: rebuilt only where either changes
   // The materials of i and j in each lane whose pair `law` holds: reread only where they change
   // (almost never: a scene of few materials has runs of contacts of one pair).
   const bool many_materials = materials.size() > 1;
@@ -172,8 +173,10 @@ DEM_AVX2 double pair_law(const PairLawArrays a, const MaterialTable& materials, 
   // 1 read only their positions), where a random packing's particles no longer fit the core's
   // cache (bench/results).
   constexpr int kAhead = 8;
-  // The kinematics and histories of the four contacts from e on, and their parameters in lp.
+  // The kinematics and histories of the four contacts from e on, and their parameters in lp;
+  // returns whether lp changed.
   const auto take = [&](int e, FourContacts& g, LawParams& lp, simd::Ints4& lp_i, simd::Ints4& lp_j) DEM_AVX2_LAMBDA {
+    bool changed = false;
     if (e + kAhead + 4 <= m)
       for (int l = 0; l < 4; ++l) {
         const long ahead = found.contact[e + kAhead + l];
@@ -212,7 +215,7 @@ DEM_AVX2 double pair_law(const PairLawArrays a, const MaterialTable& materials, 
         simd::store_aligned(ml_i, mat_i), simd::store_aligned(ml_j, mat_j);
         const PairParams* pp[4];
         for (int l = 0; l < 4; ++l) pp[l] = &materials.pair(ml_i[l], ml_j[l]);
-        lp = law_params(pp), lp_i = mat_i, lp_j = mat_j;
+        lp = law_params(pp), lp_i = mat_i, lp_j = mat_j, changed = true;
       }
     }
     // Without bonds (Bonds false: no contact of the scene holds one) every lane's flag is false.
@@ -221,6 +224,7 @@ DEM_AVX2 double pair_law(const PairLawArrays a, const MaterialTable& materials, 
     g.rolling = V3{};
     if constexpr (kRollingHistory) g.rolling = Tangential::in_tangent_plane(load_four(a.rolling, g.k), c.n);
     g.mark = simd::gather(a.dashpot, k);
+    return changed;
   };
   // What the first `count` of them leave.
   const auto keep = [&](const FourContacts& g, int count, const LaneForce<Lanes4>& f, const V3& spring, const Lanes4& mark,
@@ -244,8 +248,8 @@ DEM_AVX2 double pair_law(const PairLawArrays a, const MaterialTable& materials, 
   for (int e = 0; e < m;) {
     if (e + 4 < m) {  // eight: two fours, the second with at least one contact
       alignas(32) FourContacts g, h;
-      take(e, g, law, law_i, law_j);
-      take(e + 4, h, law_hi, law_hi_i, law_hi_j);
+      const bool changed = take(e, g, law, law_i, law_j);
+      if (take(e + 4, h, law_hi, law_hi_i, law_hi_j) || changed) law_eight = law_params(law, law_hi);
       LaneKinematics<T> c;
       c.n = lanes::two(g.c.n, h.c.n), c.overlap = T(g.c.overlap, h.c.overlap), c.v_rel = lanes::two(g.c.v_rel, h.c.v_rel);
       c.w_arm = lanes::two(g.c.w_arm, h.c.w_arm), c.m_eff = T(g.c.m_eff, h.c.m_eff), c.r_eff = T(g.c.r_eff, h.c.r_eff);
@@ -253,8 +257,7 @@ DEM_AVX2 double pair_law(const PairLawArrays a, const MaterialTable& materials, 
       lanes::Triple<T> spring = lanes::two(g.spring, h.spring), rolling = lanes::two(g.rolling, h.rolling);
       lanes::Two<Mask4> bonded{g.bonded, h.bonded};
       T mark(g.mark, h.mark);
-      const LawParamsTwo lp = law_params(law, law_hi);
-      const LaneForce<T> f = Model::evaluate_in_plane(lp, c, dt, spring, bonded, mark, rolling);
+      const LaneForce<T> f = Model::evaluate_in_plane(law_eight, c, dt, spring, bonded, mark, rolling);
       const LaneForce<Lanes4> f_lo{low(f.on_i), low(f.tangential), low(f.couple), f.normal.lo, f.elastic.lo};
       const LaneForce<Lanes4> f_hi{high(f.on_i), high(f.tangential), high(f.couple), f.normal.hi, f.elastic.hi};
       keep(g, 4, f_lo, low(spring), mark.lo, bonded.lo);

@@ -2,8 +2,9 @@
 // Lane types, so that a law is written once and runs one contact at a time or four at a time:
 // code written over a lane type L (double, or Lanes4: four doubles in an AVX2 register) with its
 // mask type (bool, or Mask4) and selections in place of branches is the plain path with
-// L = double and the four-wide path with L = Lanes4 (or Two<Lanes4>, two sets of four). Each operation rounds alike in a lane and in
-// a scalar register (IEEE 754; no fused multiply-add is contracted), so both give the same bits.
+// L = double and the four-wide path with L = Lanes4 (or Two<Lanes4>, two sets of four). Each
+// operation rounds alike in a lane and in a scalar register (IEEE 754; no fused multiply-add is
+// contracted), so both give the same bits.
 //
 // A four-wide caller is a [[gnu::target("avx2")]] function (DEM_AVX2, simd.hpp); the law and the
 // operations below are always inlined into it, where they become AVX2 instructions. What needs

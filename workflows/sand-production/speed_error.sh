@@ -58,7 +58,7 @@ for run in "${runs[@]}"; do
     "${well[@]}" --prefix "$out/$name" > /dev/null
   "$py" - "$out" "$name" "$step" "$cutoff" >> "$out/speed_error.csv" <<'PY'
 import csv, re, sys
-out, name, frac, cutoff = sys.argv[1:]
+out, name, step, cutoff = sys.argv[1:]
 log = open(f"{out}/{name}.log").read()
 m = re.search(r"stage produce done: (\d+) steps in ([0-9.]+) s wall time, ([0-9.e+]+) particle-steps/s", log)
 sink = list(csv.DictReader(open(f"{out}/{name}.sink.csv")))[-1]
@@ -68,7 +68,7 @@ near = [r for r in rows if float(r["r_over_a"]) < 2]
 far = [r for r in rows if float(r["r_over_a"]) >= 2]
 bonds = list(csv.DictReader(open(f"{out}/{name}_bonds.csv")))
 broken = sum(int(r["broken"]) for r in bonds) / max(1, sum(int(r["bonds"]) for r in bonds))
-print(f"{frac},{cutoff},{m[1]},{m[2]},{m[3]},{sink['removed_total']},{float(sink['removed_mass_kg']):.4g},"
+print(f"{step},{cutoff},{m[1]},{m[2]},{m[3]},{sink['removed_total']},{float(sink['removed_mass_kg']):.4g},"
       f"{mean(near, 'stt_Pa'):.2f},{mean(near, 'srr_Pa'):.2f},{mean(far, 'stt_Pa'):.2f},{mean(far, 'srr_Pa'):.2f},{broken:.4f}")
 PY
 done
