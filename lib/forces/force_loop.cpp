@@ -15,6 +15,7 @@
 #include "contact/model_table.hpp"
 #include "forces/find_contacts.hpp"
 #include "forces/pair_law_four_wide.hpp"
+#include "forces/wall_law.hpp"
 #include "simd/lanes_avx2.hpp"
 #include "simd/memory.hpp"
 #include "simd/simd.hpp"
@@ -127,24 +128,23 @@ inline void wait_until_done(std::vector<long>& done, long b, long epoch) {
   }
 }
 
-// Working storage of one particle's wall candidates, per thread, grown to the longest run and then
-// kept (no allocation per step: OpenMP keeps its threads, and with them these).
+// Working storage of the wall contacts, per thread, grown to the longest run and the most contacts
+// of a block, then kept (no allocation per step: OpenMP keeps its threads, and with them these).
 struct WallScratch {
   std::vector<Vec3> to_wall;
   std::vector<std::uint8_t> touching, take;
   std::vector<int> order;
+  WallContactsFound found;  // the block's contacts, for the law (wall_law.hpp)
 };
 
-// The wall candidates of run r (one particle's, in order) after its pair contacts: whether each is a
-// contact, its law, its loads added to the particle's; with `power`, the walls' power f · v_wall
-// at the contact points added to it; with `work` (the energy log), each contact's part of the
-// step's work (add_wall_contact_work). Returns the largest relative overlap.
+// The wall candidates of run r (one particle's, in order): which are contacts this step, those
+// appended to `found` with their kinematics; the others lose their history and sum.
 template <class Model>
-double wall_run(const ForceLoopInput& in, ContactList& wc, ForceBlocks& out, long r, WallScratch& scratch, double* power, StepWork* work) {
+void find_wall_contacts(const ForceLoopInput& in, ContactList& wc, long r, WallScratch& scratch) {
   const Particles& p = in.particles;
   const int first = in.wall_runs[r], n = in.wall_runs[r + 1] - first;
   const int i = wc.slot_i[first];
-  auto& [to_wall, touching, take, order] = scratch;
+  auto& [to_wall, touching, take, order, found] = scratch;
   if (static_cast<int>(to_wall.size()) < n) to_wall.resize(n), touching.resize(n), take.resize(n), order.resize(n);
   counted_wall_touches(p, in.geometry, wc, first, n, to_wall.data(), touching.data(), take.data(), order.data());
   for (int e = 0; e < n; ++e) take[e] = take[e] || wc.bonded[first + e];  // a bond holds regardless
@@ -168,9 +168,8 @@ double wall_run(const ForceLoopInput& in, ContactList& wc, ForceBlocks& out, lon
       wc.dashpot[k] = wc.dashpot[first + from], wc.dashpot[first + from] = 0;  // and the dashpot's mark
     }
   }
-  double worst = 0;
   for (int e = 0; e < n; ++e) {
-    const long k = first + e;
+    const int k = first + e;
     if (!take[e]) {
       wc.active[k] = 0;
       wc.spring[k] = Vec3::Zero();
@@ -191,20 +190,32 @@ double wall_run(const ForceLoopInput& in, ContactList& wc, ForceBlocks& out, lon
     c.w_arm = p.radius[i] * p.w[i];
     c.m_eff = p.mass[i];
     c.r_eff = p.radius[i];  // a wall: infinite radius, eq. H3
-    if constexpr (Model::has_rolling) c.w_rel = p.w[i] - g.spin;
-    const ContactForce f = Model::evaluate(in.materials.pair(p.material[i], in.walls[wc.slot_j[k]].material), c, in.dt,
-                                           wc.spring[k], wc.bonded[k], wc.dashpot[k], wc.rolling[k]);
-    if constexpr (Model::has_rolling) wc.rolling[k] = f.couple;
-    const Vec3 torque_per_radius = c.n.cross(f.tangential);
+    c.w_rel = Model::has_rolling ? Vec3(p.w[i] - g.spin) : Vec3::Zero();  // unread without rolling, but copied
+    found.add(k, in.materials.pair(p.material[i], in.walls[wc.slot_j[k]].material), c, v_wall);
+  }
+}
+
+// The loads of the wall contacts `found` (their law done) added to their particles', in order;
+// with `power`, the walls' power f · v_wall at the contact points added to it; with `work` (the
+// energy log), each contact's part of the step's work (add_wall_contact_work). Returns the
+// largest relative overlap.
+template <class Model>
+double add_wall_loads(const ForceLoopInput& in, ContactList& wc, const WallContactsFound& found, ForceBlocks& out, double* power,
+                      StepWork* work) {
+  const Particles& p = in.particles;
+  double worst = 0;
+  for (int e = 0; e < found.size(); ++e) {
+    const int k = found.k[e], i = wc.slot_i[k];
+    const ContactSum& s = wc.sum[k];
+    const Vec3 couple = Model::has_rolling ? wc.rolling[k] : Vec3::Zero();
     wc.active[k] = 1;
-    wc.normal[k] = c.n;
-    wc.sum[k] = {f.on_i, torque_per_radius};
-    out.force[i].v += f.on_i;  // eq. 2.31
-    out.torque[i].v += p.radius[i] * torque_per_radius;  // eq. 2.33
-    if constexpr (Model::has_rolling) out.torque[i].v += f.couple;  // eq. R1
-    if (power) *power += f.on_i.dot(v_wall);
-    if (work) add_wall_contact_work(f, c.n, torque_per_radius, v_wall, g.spin, in.dt, out.work[i], *work);
-    worst = std::max(worst, relative_overlap_if_larger(c.overlap, p.radius[i], worst));
+    out.force[i].v += s.force;  // eq. 2.31
+    out.torque[i].v += p.radius[i] * s.torque_per_radius;  // eq. 2.33
+    if constexpr (Model::has_rolling) out.torque[i].v += couple;  // eq. R1
+    if (power) *power += s.force.dot(found.v_wall[e]);
+    if (work)
+      add_wall_contact_work(in.wall_work[k], s, couple, found.v_wall[e], in.geometry[wc.slot_j[k]].spin, in.dt, out.work[i], *work);
+    worst = std::max(worst, relative_overlap_if_larger(found.overlap[e], p.radius[i], worst));
   }
   return worst;
 }
@@ -329,10 +340,12 @@ double finish_block(const ForceLoopInput& in, const ContactList& pc, ContactList
   const PairResults r{pc.sum.data(), pc.rolling.data(), in.work, pc.active.data()};
   if (out.work) sum_pair_contacts<Model::has_rolling, true>(out, r, p, lo, hi);
   else sum_pair_contacts<Model::has_rolling, false>(out, r, p, lo, hi);
-  double worst = 0, power = 0;
-  for (int q = in.wall_block_first[b]; q < in.wall_block_first[b + 1]; ++q)
-    worst = std::max(worst, wall_run<Model>(in, wc, out, in.wall_run_order[q], scratch, out.wall_power ? &power : nullptr,
-                                            out.step_work ? &work : nullptr));
+  // Its wall contacts: found run by run, their law on them all, their loads added in that order.
+  scratch.found.clear();
+  for (int q = in.wall_block_first[b]; q < in.wall_block_first[b + 1]; ++q) find_wall_contacts<Model>(in, wc, in.wall_run_order[q], scratch);
+  wall_law<Model>(PairLawArrays(p, wc, true, in.wall_work), scratch.found, in.dt, out.simd, in.any_bonds);
+  double power = 0;
+  const double worst = add_wall_loads<Model>(in, wc, scratch.found, out, out.wall_power ? &power : nullptr, out.step_work ? &work : nullptr);
   if (out.wall_power) out.wall_power[b] = power;
   if (out.body.fluid) out.body.add_fluid(p, lo, hi, out.force.data(), out.simd);
   if (out.motion) not_finite = std::max(not_finite, move_particles(out.motion->arrays, out.motion->constants, lo, hi));

@@ -36,7 +36,8 @@ struct ForceLoopInput {
   bool any_bonds;  // some contact is bonded (Simulation::has_bonds)
   double dt;
   bool keep_pair_results;  // SimParams::keep_pair_results
-  ContactWork* work = nullptr;  // per pair candidate: written by the law where the energy log is on
+  ContactWork* work = nullptr;       // per pair candidate: written by the law where the energy log is on
+  ContactWork* wall_work = nullptr;  // per wall candidate: the same
 };
 
 // Each particle's net load, summed in the force loop in one order that depends on neither the

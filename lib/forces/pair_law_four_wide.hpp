@@ -114,12 +114,13 @@ DEM_AVX2_INLINE LawParamsTwo law_params(const LawParams& lo, const LawParams& hi
   p.each([](auto& lanes, const auto& a, const auto& b) DEM_AVX2_LAMBDA { lanes = {a, b}; }, lo, hi);
   return p;
 }
-// What the first `count` of four contacts (k) leave: keep_pair_result's, the dashpot's mark and,
-// with Couples, the rolling couple, lane by lane; each vector written with one masked store of its
-// three doubles (nothing written past it), all in one loop (one loop's overhead, not several).
+// What the first `count` of four contacts (k) leave: keep_pair_result's, the dashpot's mark, with
+// `bonds` the bond flags and, with Couples, the rolling couple, lane by lane; each vector written
+// with one masked store of its three doubles (nothing written past it), all in one loop (one
+// loop's overhead, not several).
 template <bool Couples>
 DEM_AVX2_INLINE void keep_results(const PairLawArrays& a, const int (&k)[4], int count, const V3& spring, const V3& n,
-                                  const LaneForce<Lanes4>& force, const Lanes4& mark) {
+                                  const LaneForce<Lanes4>& force, const Lanes4& mark, const Mask4& bonded, bool bonds) {
   Lanes4 s[4], f[4], t[4], nl[4], m[4], wd[4], wt[4];
   simd::per_lane(spring, s), simd::per_lane(force.on_i, f), simd::per_lane(cross(n, force.tangential), t);
   if (a.keep_normals) simd::per_lane(n, nl);
@@ -135,6 +136,7 @@ DEM_AVX2_INLINE void keep_results(const PairLawArrays& a, const int (&k)[4], int
     if (a.keep_normals) simd::store_xyz(a.normal[k[l]].data(), nl[l]);
     if constexpr (Couples) simd::store_xyz(a.rolling[k[l]].data(), m[l]);  // summed with the loads (force_loop.cpp)
     if (a.work) simd::store_xyz(a.work[k[l]].damping.data(), wd[l]), simd::store_xyz(a.work[k[l]].tangential.data(), wt[l]);
+    if (bonds) a.bonded[k[l]] = bonded.v[l] != 0;
   }
 }
 
@@ -148,10 +150,52 @@ struct FourContacts {
   Lanes4 ri, rj;
 };
 
+// The law of Model on m contacts, eight at a time (two fours interleaved, L = Two<Lanes4>; the
+// last four or fewer with L = Lanes4), lanes past the m-th repeating the last contact (computed,
+// never kept). take(e, g, half) reads the four contacts from e on into g and, where their
+// parameters differ from law[half]'s, sets law[half] and returns true; keep(g, count, f, spring,
+// mark, bonded) stores what the first `count` of them leave. Shared by the pair contacts (below)
+// and the wall contacts (wall_law_four_wide.hpp).
+template <class Model, class Take, class Keep>
+DEM_AVX2_INLINE void eight_at_a_time(int m, double dt, LawParams (&law)[2], Take&& take, Keep&& keep) {
+  using T = lanes::Two<Lanes4>;
+  using lanes::high;
+  using lanes::low;
+  LawParamsTwo law_eight = law_params(law[0], law[1]);  // rebuilt only where either four's changes
+  for (int e = 0; e < m;) {
+    if (e + 4 < m) {  // eight: two fours, the second with at least one contact
+      alignas(32) FourContacts g, h;
+      const bool changed = take(e, g, 0);
+      if (take(e + 4, h, 1) || changed) law_eight = law_params(law[0], law[1]);
+      LaneKinematics<T> c;
+      c.n = lanes::two(g.c.n, h.c.n), c.overlap = T(g.c.overlap, h.c.overlap), c.v_rel = lanes::two(g.c.v_rel, h.c.v_rel);
+      c.w_arm = lanes::two(g.c.w_arm, h.c.w_arm), c.m_eff = T(g.c.m_eff, h.c.m_eff), c.r_eff = T(g.c.r_eff, h.c.r_eff);
+      if constexpr (Model::has_rolling) c.w_rel = lanes::two(g.c.w_rel, h.c.w_rel);
+      lanes::Triple<T> spring = lanes::two(g.spring, h.spring), rolling = lanes::two(g.rolling, h.rolling);
+      lanes::Two<Mask4> bonded{g.bonded, h.bonded};
+      T mark(g.mark, h.mark);
+      const LaneForce<T> f = Model::evaluate_in_plane(law_eight, c, dt, spring, bonded, mark, rolling);
+      const LaneForce<Lanes4> f_lo{low(f.on_i), low(f.tangential), low(f.couple), f.normal.lo, f.elastic.lo};
+      const LaneForce<Lanes4> f_hi{high(f.on_i), high(f.tangential), high(f.couple), f.normal.hi, f.elastic.hi};
+      keep(g, 4, f_lo, low(spring), mark.lo, bonded.lo);
+      keep(h, std::min(4, m - e - 4), f_hi, high(spring), mark.hi, bonded.hi);
+      e += 8;
+    } else {
+      alignas(32) FourContacts g;
+      take(e, g, 0);
+      Mask4 bonded = g.bonded;
+      V3 spring = g.spring, rolling = g.rolling;
+      Lanes4 mark = g.mark;
+      const LaneForce<Lanes4> f = Model::evaluate_in_plane(law[0], g.c, dt, spring, bonded, mark, rolling);
+      keep(g, std::min(4, m - e), f, spring, mark, bonded);
+      e += 4;
+    }
+  }
+}
+
 // The kinematics of force_loop.cpp's plain pass 2 and the law of contact/contact_law.hpp with
-// Model, eight contacts at a time (L = Two<Lanes4>; the last four or fewer with L = Lanes4): the
-// same operations in the same order. The law and the lane operations are always inlined here,
-// where AVX2 is allowed.
+// Model, eight contacts at a time (eight_at_a_time): the same operations in the same order. The
+// law and the lane operations are always inlined here, where AVX2 is allowed.
 template <class Model, bool Fixed, bool Bonds>
 DEM_AVX2 double pair_law(const PairLawArrays a, const MaterialTable& materials, double dt, const FoundInChunk found, int m) {
   using Tangential = typename Model::TangentialModel;
@@ -162,20 +206,17 @@ DEM_AVX2 double pair_law(const PairLawArrays a, const MaterialTable& materials, 
     found.contact[q] = found.contact[m - 1], found.dx[q] = found.dx[m - 1], found.dy[q] = found.dy[m - 1], found.dz[q] = found.dz[m - 1];
   // One material: the same parameters for every contact, set once.
   const PairParams* only[4] = {&materials.pair(0, 0), &materials.pair(0, 0), &materials.pair(0, 0), &materials.pair(0, 0)};
-  LawParams law = law_params(only), law_hi = law;
-  LawParamsTwo law_eight = law_params(law, law_hi);  // both: rebuilt only where either changes
-  // The materials of i and j in each lane whose pair `law` holds: reread only where they change
+  LawParams law[2] = {law_params(only), law_params(only)};
+  // The materials of i and j in each lane whose pair law[half] holds: reread only where they change
   // (almost never: a scene of few materials has runs of contacts of one pair).
   const bool many_materials = materials.size() > 1;
-  simd::Ints4 law_i{}, law_j{}, law_hi_i{}, law_hi_j{};
+  simd::Ints4 law_i[2] = {}, law_j[2] = {};
   double worst = 0;
   // Fetched into the cache ahead: the velocities of both particles of the contacts kAhead on (pass
   // 1 read only their positions), where a random packing's particles no longer fit the core's
   // cache (bench/results).
   constexpr int kAhead = 8;
-  // The kinematics and histories of the four contacts from e on, and their parameters in lp;
-  // returns whether lp changed.
-  const auto take = [&](int e, FourContacts& g, LawParams& lp, simd::Ints4& lp_i, simd::Ints4& lp_j) DEM_AVX2_LAMBDA {
+  const auto take = [&](int e, FourContacts& g, int half) DEM_AVX2_LAMBDA {
     bool changed = false;
     if (e + kAhead + 4 <= m)
       for (int l = 0; l < 4; ++l) {
@@ -210,12 +251,12 @@ DEM_AVX2 double pair_law(const PairLawArrays a, const MaterialTable& materials, 
     }
     if (many_materials) {
       const simd::Ints4 mat_i = simd::gather(a.material, i), mat_j = simd::gather(a.material, j);
-      if (!(simd::same(mat_i, lp_i) && simd::same(mat_j, lp_j))) {
+      if (!(simd::same(mat_i, law_i[half]) && simd::same(mat_j, law_j[half]))) {
         alignas(16) int ml_i[4], ml_j[4];
         simd::store_aligned(ml_i, mat_i), simd::store_aligned(ml_j, mat_j);
         const PairParams* pp[4];
         for (int l = 0; l < 4; ++l) pp[l] = &materials.pair(ml_i[l], ml_j[l]);
-        lp = law_params(pp), lp_i = mat_i, lp_j = mat_j, changed = true;
+        law[half] = law_params(pp), law_i[half] = mat_i, law_j[half] = mat_j, changed = true;
       }
     }
     // Without bonds (Bonds false: no contact of the scene holds one) every lane's flag is false.
@@ -229,9 +270,7 @@ DEM_AVX2 double pair_law(const PairLawArrays a, const MaterialTable& materials, 
   // What the first `count` of them leave.
   const auto keep = [&](const FourContacts& g, int count, const LaneForce<Lanes4>& f, const V3& spring, const Lanes4& mark,
                         const Mask4& bonded) DEM_AVX2_LAMBDA {
-    keep_results<Model::has_rolling>(a, g.k, count, spring, g.c.n, f, mark);
-    if constexpr (Bonds)
-      for (int l = 0; l < count; ++l) a.bonded[g.k[l]] = bonded.v[l] != 0;
+    keep_results<Model::has_rolling>(a, g.k, count, spring, g.c.n, f, mark, bonded, Bonds);
     // relative_overlap_if_larger's test on every lane with the four's first `worst`: where no lane
     // passes, none can with the larger values the loop below may reach (almost every four).
     const Lanes4 bar = (simd::broadcast(worst) * simd::min(g.ri, g.rj)) * simd::broadcast(1 - 1e-9);
@@ -242,38 +281,7 @@ DEM_AVX2 double pair_law(const PairLawArrays a, const MaterialTable& materials, 
         worst = std::max(worst, relative_overlap_if_larger(u[l], std::min(a.radius[g.i[l]], a.radius[g.j[l]]), worst));
     }
   };
-  using T = lanes::Two<Lanes4>;
-  using lanes::high;
-  using lanes::low;
-  for (int e = 0; e < m;) {
-    if (e + 4 < m) {  // eight: two fours, the second with at least one contact
-      alignas(32) FourContacts g, h;
-      const bool changed = take(e, g, law, law_i, law_j);
-      if (take(e + 4, h, law_hi, law_hi_i, law_hi_j) || changed) law_eight = law_params(law, law_hi);
-      LaneKinematics<T> c;
-      c.n = lanes::two(g.c.n, h.c.n), c.overlap = T(g.c.overlap, h.c.overlap), c.v_rel = lanes::two(g.c.v_rel, h.c.v_rel);
-      c.w_arm = lanes::two(g.c.w_arm, h.c.w_arm), c.m_eff = T(g.c.m_eff, h.c.m_eff), c.r_eff = T(g.c.r_eff, h.c.r_eff);
-      if constexpr (Model::has_rolling) c.w_rel = lanes::two(g.c.w_rel, h.c.w_rel);
-      lanes::Triple<T> spring = lanes::two(g.spring, h.spring), rolling = lanes::two(g.rolling, h.rolling);
-      lanes::Two<Mask4> bonded{g.bonded, h.bonded};
-      T mark(g.mark, h.mark);
-      const LaneForce<T> f = Model::evaluate_in_plane(law_eight, c, dt, spring, bonded, mark, rolling);
-      const LaneForce<Lanes4> f_lo{low(f.on_i), low(f.tangential), low(f.couple), f.normal.lo, f.elastic.lo};
-      const LaneForce<Lanes4> f_hi{high(f.on_i), high(f.tangential), high(f.couple), f.normal.hi, f.elastic.hi};
-      keep(g, 4, f_lo, low(spring), mark.lo, bonded.lo);
-      keep(h, std::min(4, m - e - 4), f_hi, high(spring), mark.hi, bonded.hi);
-      e += 8;
-    } else {
-      alignas(32) FourContacts g;
-      take(e, g, law, law_i, law_j);
-      Mask4 bonded = g.bonded;
-      V3 spring = g.spring, rolling = g.rolling;
-      Lanes4 mark = g.mark;
-      const LaneForce<Lanes4> f = Model::evaluate_in_plane(law, g.c, dt, spring, bonded, mark, rolling);
-      keep(g, std::min(4, m - e), f, spring, mark, bonded);
-      e += 4;
-    }
-  }
+  eight_at_a_time<Model>(m, dt, law, take, keep);
   return worst;
 }
 

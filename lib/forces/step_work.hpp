@@ -7,6 +7,7 @@
 // ledger's pass does it after the motion, with the same function: the same bits either way.
 #include <cstdint>
 
+#include "contact/contact_list.hpp"
 #include "contact/kinematics.hpp"
 #include "core/fixed_sum.hpp"
 #include "core/types.hpp"
@@ -64,23 +65,22 @@ struct StepWorkInput {
 // v̄ = (v^{n-1/2} + v^{n+1/2})/2, w̄ likewise (docs/physics.md eq. P33-P35, P37, P40-P41).
 void add_particle_work(const Particles& p, const StepWorkInput& in, long lo, long hi, StepWork& sums);
 
-// A wall contact's part (force f on particle i, normal n from i to the wall, n x f_t `torque_per_radius`;
-// the wall's material at the contact point moving at `v_wall`, spinning at `spin`): its forces join
-// i's ParticleWork, to be taken with v̄_i, and what the wall's own motion makes of them is added to
-// `sums` now: f_d and f_t work on v̄_i - v_wall (eq. P33-P34), the wall puts in f · v_wall (eq. P37);
+// A wall contact's part (what its law left: `w`, and its sum `s`, the force f on particle i and
+// n x f_t; its rolling couple M, zero without one; the wall's material at the contact point moving
+// at `v_wall`, spinning at `spin`): its forces join i's ParticleWork, to be taken with v̄_i, and
+// what the wall's own motion makes of them is added to `sums` now: f_d and f_t work on v̄_i - v_wall (eq. P33-P34), the wall puts in f · v_wall (eq. P37);
 // a rolling couple M on i works on w̄_i - spin, the wall's drive puts in M · spin (eq. P41).
-inline void add_wall_contact_work(const ContactForce& f, const Vec3& n, const Vec3& torque_per_radius, const Vec3& v_wall,
+inline void add_wall_contact_work(const ContactWork& w, const ContactSum& s, const Vec3& couple, const Vec3& v_wall,
                                   const Vec3& spin, double dt, ParticleWork& pw, StepWork& sums) {
-  const Vec3 damping = (f.normal - f.elastic) * n;  // as a pair contact's law leaves it (ContactWork)
-  pw.damping.v += damping;
-  pw.tangential.v += f.tangential;
-  pw.torque_per_radius.v += torque_per_radius;
-  sums.damping.add(-damping.dot(v_wall) * dt);
-  sums.tangential.add(-f.tangential.dot(v_wall) * dt);
-  sums.walls.add(f.on_i.dot(v_wall) * dt);
-  if (f.couple != Vec3::Zero()) {  // only a law with couples makes one: then pw.couple was summed
-    pw.couple.v += f.couple;
-    sums.walls.add(f.couple.dot(spin) * dt), sums.rolling.add(-f.couple.dot(spin) * dt);
+  pw.damping.v += w.damping;
+  pw.tangential.v += w.tangential;
+  pw.torque_per_radius.v += s.torque_per_radius;
+  sums.damping.add(-w.damping.dot(v_wall) * dt);
+  sums.tangential.add(-w.tangential.dot(v_wall) * dt);
+  sums.walls.add(s.force.dot(v_wall) * dt);
+  if (couple != Vec3::Zero()) {  // only a law with couples makes one: then pw.couple was summed
+    pw.couple.v += couple;
+    sums.walls.add(couple.dot(spin) * dt), sums.rolling.add(-couple.dot(spin) * dt);
   }
 }
 

@@ -58,13 +58,14 @@ void Simulation::compute_loads(const MotionStep* motion) {
   find_contacts();
   if (ledger.on && has_bonds_) ledger_pair_bonded_ = pairs_.bonded, ledger_wall_bonded_ = walls_.bonded, ledger_bond_count_ = bond_count();
   const bool any_fixed = particles.any_fixed();
-  if (ledger.on) {  // the pair contacts' work for the energy ledger, per contact and per particle
+  if (ledger.on) {  // the contacts' work for the energy ledger, per contact and per particle
     ledger_contact_work_.resize(pairs_.size());
+    ledger_wall_work_.resize(walls_.size());
     ledger_particle_work_.resize(particles.size());
   }
   const ForceLoopInput in{particles, materials, walls, wall_geometry_, wall_runs_, wall_run_order_, wall_block_first_, periodic,
                           any_fixed, has_bonds_, dt, params.keep_pair_results,
-                          ledger.on ? ledger_contact_work_.data() : nullptr};
+                          ledger.on ? ledger_contact_work_.data() : nullptr, ledger.on ? ledger_wall_work_.data() : nullptr};
   if (indexed_block_ != params.load_block) index_contacts_per_particle();
   const bool sum_wall_power = walls_move_ && energy_check_on();  // the energy check's (audit_energy)
   if (sum_wall_power) wall_power_.assign(block_first_.size() - 1, 0.0);  // per load block (ForceBlocks::wall_power)

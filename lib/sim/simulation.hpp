@@ -238,6 +238,7 @@ class Simulation {
   long ledger_bond_count_ = 0;
   std::vector<std::uint8_t> ledger_fibre_broken_;  // the fibre segments broken before the force loop
   std::vector<ContactWork> ledger_contact_work_;  // while ledger.on: what each pair contact's law left, per candidate
+  std::vector<ContactWork> ledger_wall_work_;     // while ledger.on: the same, per wall candidate
   std::vector<ParticleWork> ledger_particle_work_;  // while ledger.on: the force loop's, per slot
   StepWork ledger_work_;  // while ledger.on: the step's work the force loop added (ForceBlocks::step_work)
   bool ledger_particles_done_ = false;  // whether that includes the particles' (the motion ran in the loop)
