@@ -82,7 +82,7 @@ struct Pass1Case {
     Pass1Result r;
     const std::size_t room = last - first + kFoundPadding;
     r.contact.resize(room), r.dx.resize(room), r.dy.resize(room), r.dz.resize(room);
-    r.m = find_contacts<true>(CandidateArrays(p, c), box, first, last, {r.contact.data(), r.dx.data(), r.dy.data(), r.dz.data()},
+    r.m = find_contacts<true>(CandidateArrays(p, c, nullptr), box, first, last, {r.contact.data(), r.dx.data(), r.dy.data(), r.dz.data()},
                                   simd_loops_on());
     r.contact.resize(r.m), r.dx.resize(r.m), r.dy.resize(r.m), r.dz.resize(r.m);
     r.active = c.active, r.bonded = c.bonded, r.spring = c.spring;

@@ -58,8 +58,7 @@ DEM_AVX2 int find_contacts_avx2(const CandidateArrays a, const PeriodicBox& box,
     std::memcpy(a.active + k, &now4, 4);
     if (const int lost = lanes(active4) & ~now)  // rare: a contact ends
       for (int l = 0; l < 4; ++l)
-        if (lost >> l & 1)
-          a.spring[k + l] = Vec3::Zero(), a.rolling[k + l] = Vec3::Zero(), a.dashpot[k + l] = 0, a.sum[k + l] = ContactSum();
+        if (lost >> l & 1) clear_lost_contact(a, k + l);
     simd::store_compressed(found.dx + m, dx, now);
     simd::store_compressed(found.dy + m, dy, now);
     simd::store_compressed(found.dz + m, dz, now);

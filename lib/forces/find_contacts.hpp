@@ -32,12 +32,20 @@ struct CandidateArrays {
   Vec3* rolling;
   double* dashpot;
   ContactSum* sum;
+  ContactWork* work;  // ForceLoopInput::work: zeroed with the sum where a contact ends, or null
 
-  CandidateArrays(const Particles& p, ContactList& pc)
+  CandidateArrays(const Particles& p, ContactList& pc, ContactWork* work_or_null)
       : count(static_cast<long>(pc.size())), x(p.x.data()), radius(p.radius.data()), slot_i(pc.slot_i.data()),
         slot_j(pc.slot_j.data()), active(pc.active.data()), bonded(pc.bonded.data()), spring(pc.spring.data()),
-        rolling(pc.rolling.data()), dashpot(pc.dashpot.data()), sum(pc.sum.data()) {}
+        rolling(pc.rolling.data()), dashpot(pc.dashpot.data()), sum(pc.sum.data()), work(work_or_null) {}
 };
+
+// What pass 1 clears of a contact that ends: its history, its sum and (with the energy log) its
+// work, so that every candidate that is no contact holds zeros (read as such by the sum pass).
+inline void clear_lost_contact(const CandidateArrays& a, long k) {
+  a.spring[k] = Vec3::Zero(), a.rolling[k] = Vec3::Zero(), a.dashpot[k] = 0, a.sum[k] = ContactSum();
+  if (a.work) a.work[k] = {Vec3::Zero(), Vec3::Zero()};
+}
 
 // The contacts found in a chunk: candidate positions and separations x_j - x_i (nearest image),
 // as separate arrays. Each array holds at least kFoundPadding entries more than the chunk has
@@ -77,7 +85,7 @@ inline int find_contacts_plain(const CandidateArrays& a, const PeriodicBox& box,
     m += now;
     // A candidate that was no contact already holds zeros (ContactList): in a dense bed most
     // candidates are such, and rewriting their 72 bytes every step cost memory bandwidth.
-    if (!now && was) a.spring[k] = Vec3::Zero(), a.rolling[k] = Vec3::Zero(), a.dashpot[k] = 0, a.sum[k] = ContactSum();
+    if (!now && was) clear_lost_contact(a, k);
   }
   return m;
 }

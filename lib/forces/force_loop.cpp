@@ -245,12 +245,11 @@ template <>
 [[gnu::always_inline]] inline void put(LoadSum& s, lanes::Lanes4 a) { lanes::store4(s.v.data(), a); }  // all four doubles of s
 #endif
 
-// What the sum pass reads per pair candidate.
+// What the sum pass reads per pair candidate (a candidate that is no contact holds zeros in each).
 struct PairResults {
   const ContactSum* sum;
-  const Vec3* couple;          // the rolling couples (read where the model has them)
-  const ContactWork* work;     // while the energy log is on (written for contacts only), else null
-  const std::uint8_t* active;  // whether each is a contact this step
+  const Vec3* couple;       // the rolling couples (read where the model has them)
+  const ContactWork* work;  // while the energy log is on, else null
 };
 
 // The net loads of particles [lo, hi) from their weight and their pair contacts (written, not added
@@ -264,8 +263,8 @@ struct PairResults {
 // in the plain loops, one four-lane register with AVX2; the same operations, so the same bits.
 // With couples (rolling resistance): + M where it is i, - M where it is j, added to the torque last
 // (eq. R1). With the energy log (Ledger): the same runs of its contacts' ContactWork into
-// ForceBlocks::work (a mere candidate's is not written, nor read: the memory it spares is worth
-// the branch; masked, it read every candidate's: the log 10 % more instructions, no faster).
+// ForceBlocks::work, mere candidates' zeros included (pass 1 keeps them zero: no branch per
+// candidate, whose outcome the predictor could not guess).
 template <class V, bool Couples, bool Ledger>
 [[gnu::always_inline]] inline void sum_loads(const ForceBlocks& out, const PairResults& r, const Particles& p, long lo, long hi) {
   const int* const by_key = out.by_key.data();
@@ -292,16 +291,14 @@ template <class V, bool Couples, bool Ledger>
       read_pair(r.sum[k].force.data(), force_k, torque_k);
       f = f + force_k, arm = arm + torque_k;
       if constexpr (Couples) spin = spin + xyz<V>(r.couple[k]);
-      if constexpr (Ledger)
-        if (r.active[k]) read_pair(r.work[k].damping.data(), damping_k, tangential_k), damping = damping + damping_k, tangential = tangential + tangential_k;
+      if constexpr (Ledger) read_pair(r.work[k].damping.data(), damping_k, tangential_k), damping = damping + damping_k, tangential = tangential + tangential_k;
     }
     for (int e = split[i]; e < start[i + 1]; ++e) {
       const int k = by_key[e];
       read_pair(r.sum[k].force.data(), force_k, torque_k);
       f = f - force_k, arm = arm + torque_k;
       if constexpr (Couples) spin = spin - xyz<V>(r.couple[k]);
-      if constexpr (Ledger)
-        if (r.active[k]) read_pair(r.work[k].damping.data(), damping_k, tangential_k), damping = damping - damping_k, tangential = tangential - tangential_k;
+      if constexpr (Ledger) read_pair(r.work[k].damping.data(), damping_k, tangential_k), damping = damping - damping_k, tangential = tangential - tangential_k;
     }
     put(force[i], f);
     if constexpr (Couples) put(torque[i], V(V(radius[i] * arm) + spin));
@@ -337,7 +334,7 @@ double finish_block(const ForceLoopInput& in, const ContactList& pc, ContactList
                     WallScratch& scratch, long& not_finite, StepWork& work) {
   const Particles& p = in.particles;
   const long lo = b * out.block, hi = std::min(static_cast<long>(p.size()), lo + out.block);
-  const PairResults r{pc.sum.data(), pc.rolling.data(), in.work, pc.active.data()};
+  const PairResults r{pc.sum.data(), pc.rolling.data(), in.work};
   if (out.work) sum_pair_contacts<Model::has_rolling, true>(out, r, p, lo, hi);
   else sum_pair_contacts<Model::has_rolling, false>(out, r, p, lo, hi);
   // Its wall contacts: found run by run, their law on them all, their loads added in that order.
@@ -359,7 +356,7 @@ double block_forces(const ForceLoopInput& in, ContactList& pc, ContactList& wc, 
   out.times.fit(blocks, [&](long b) { return out.first[b + 1] - out.first[b] + 1; });  // candidates, until timed
   out.done.resize(blocks);
   out.touched.resize(in.particles.size());  // new slots hold 0: before any epoch
-  const ChunkInput chunk{in, CandidateArrays(in.particles, pc), PairLawArrays(in.particles, pc, in.keep_pair_results, in.work),
+  const ChunkInput chunk{in, CandidateArrays(in.particles, pc, in.work), PairLawArrays(in.particles, pc, in.keep_pair_results, in.work),
                          simd_loops_on(), out.touched.data(), static_cast<std::uint8_t>(out.epoch)};
   double worst = 0;
   long not_finite = -1;

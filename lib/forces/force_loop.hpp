@@ -36,7 +36,8 @@ struct ForceLoopInput {
   bool any_bonds;  // some contact is bonded (Simulation::has_bonds)
   double dt;
   bool keep_pair_results;  // SimParams::keep_pair_results
-  ContactWork* work = nullptr;       // per pair candidate: written by the law where the energy log is on
+  ContactWork* work = nullptr;       // per pair candidate: written by the law where the energy log is on;
+                                     // zeros in every candidate that is no contact (pass 1 keeps them so)
   ContactWork* wall_work = nullptr;  // per wall candidate: the same
 };
 

@@ -59,9 +59,12 @@ void Simulation::compute_loads(const MotionStep* motion) {
   if (ledger.on && has_bonds_) ledger_pair_bonded_ = pairs_.bonded, ledger_wall_bonded_ = walls_.bonded, ledger_bond_count_ = bond_count();
   const bool any_fixed = particles.any_fixed();
   if (ledger.on) {  // the contacts' work for the energy ledger, per contact and per particle
-    ledger_contact_work_.resize(pairs_.size());
+    if (!ledger_work_zeros_) ledger_contact_work_.assign(pairs_.size(), {Vec3::Zero(), Vec3::Zero()});
+    ledger_work_zeros_ = true;
     ledger_wall_work_.resize(walls_.size());
     ledger_particle_work_.resize(particles.size());
+  } else {
+    ledger_work_zeros_ = false;  // pass 1 does not clear it while the log is off
   }
   const ForceLoopInput in{particles, materials, walls, wall_geometry_, wall_runs_, wall_run_order_, wall_block_first_, periodic,
                           any_fixed, has_bonds_, dt, params.keep_pair_results,
@@ -310,6 +313,7 @@ void Simulation::find_contacts() {
   const double margin = has_bonds_ ? 1.01 * materials.max_break_separation() : 0.0;
   update_wall_geometry();
   if (!neighbours_.update(particles, periodic, wall_geometry_, margin, skin())) return;
+  ledger_work_zeros_ = false;  // new candidates
   // New candidates: carry the history over by key; which pairs touch is decided by the force loop.
   // Both lists are stored along the particles' storage order (locality when the storage is sorted):
   // pairs as the search finds them, wall candidates each particle's in one run, in key order.

@@ -238,6 +238,8 @@ class Simulation {
   long ledger_bond_count_ = 0;
   std::vector<std::uint8_t> ledger_fibre_broken_;  // the fibre segments broken before the force loop
   std::vector<ContactWork> ledger_contact_work_;  // while ledger.on: what each pair contact's law left, per candidate
+  bool ledger_work_zeros_ = false;  // every candidate of ledger_contact_work_ that is no contact holds zeros
+                                    // (kept so by pass 1 while the log is on; lost at a rebuild)
   std::vector<ContactWork> ledger_wall_work_;     // while ledger.on: the same, per wall candidate
   std::vector<ParticleWork> ledger_particle_work_;  // while ledger.on: the force loop's, per slot
   StepWork ledger_work_;  // while ledger.on: the step's work the force loop added (ForceBlocks::step_work)
