@@ -82,7 +82,7 @@ struct Pass1Case {
     Pass1Result r;
     const std::size_t room = last - first + kFoundPadding;
     r.contact.resize(room), r.dx.resize(room), r.dy.resize(room), r.dz.resize(room);
-    r.m = find_contacts<true>(CandidateArrays(p, c, nullptr), box, first, last, {r.contact.data(), r.dx.data(), r.dy.data(), r.dz.data()},
+    r.m = find_contacts<true>(CandidateArrays(p, c, nullptr, false), box, first, last, {r.contact.data(), r.dx.data(), r.dy.data(), r.dz.data()},
                                   simd_loops_on());
     r.contact.resize(r.m), r.dx.resize(r.m), r.dy.resize(r.m), r.dz.resize(r.m);
     r.active = c.active, r.bonded = c.bonded, r.spring = c.spring;
@@ -309,7 +309,7 @@ TEST(SimdLoops, HertzMindlinAndRollingLawsEndARunWithThePlainLoopsBits) {
 // cohesive failure surface (|s| = C + mu f_n, to 1e-12 relative: radial return's rounding) and
 // bonds broken, each of which must occur (else the comparison would not test that branch);
 // positions, velocities, spins, springs, dashpot marks and bond flags, pair and wall contacts,
-// are compared bit for bit.
+// are compared bit for bit. Each step, the count of bonds the force loop keeps must be the flags'.
 TEST(SimdLoops, BondedLiuAndMendesLawsEndARunWithThePlainLoopsBits) {
   if (!simd_loops_available()) GTEST_SKIP() << "no AVX2 on this processor: only the plain loops run";
   static_assert(ContactModel<LiuNormal>::four_wide && ContactModel<MendesNormal>::four_wide);
@@ -344,6 +344,9 @@ TEST(SimdLoops, BondedLiuAndMendesLawsEndARunWithThePlainLoopsBits) {
       long held = bonds();
       for (int s = 0; s < 700; ++s) {
         sim->advance();
+        // The count the force loop keeps (each bond it breaks) is the flags' count, walls' included.
+        const ContactList& wc = sim->wall_contacts();
+        ASSERT_EQ(sim->bonds(), bonds() + std::count(wc.bonded.begin(), wc.bonded.end(), 1)) << c.name << ", step " << s;
         if (sim != &plain) continue;
         broken += held - bonds();
         held = bonds();

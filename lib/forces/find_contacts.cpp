@@ -56,9 +56,9 @@ DEM_AVX2 int find_contacts_avx2(const CandidateArrays a, const PeriodicBox& box,
     now |= lanes(bonded4);
     const std::uint32_t now4 = (now & 1) | (now & 2) << 7 | (now & 4) << 14 | (now & 8) << 21;
     std::memcpy(a.active + k, &now4, 4);
-    if (const int lost = lanes(active4) & ~now)  // rare: a contact ends
+    if (const int lost = (a.work_unset ? 15 : lanes(active4)) & ~now)  // rare: a contact ends (or the work is unset)
       for (int l = 0; l < 4; ++l)
-        if (lost >> l & 1) clear_lost_contact(a, k + l);
+        if (lost >> l & 1) clear_no_contact(a, k + l, active4 >> 8 * l & 1);
     simd::store_compressed(found.dx + m, dx, now);
     simd::store_compressed(found.dy + m, dy, now);
     simd::store_compressed(found.dz + m, dz, now);

@@ -33,11 +33,13 @@ struct CandidateArrays {
   double* dashpot;
   ContactSum* sum;
   ContactWork* work;  // ForceLoopInput::work: zeroed with the sum where a contact ends, or null
+  bool work_unset;    // ForceLoopInput::work_unset: zero every candidate's work that is no contact
 
-  CandidateArrays(const Particles& p, ContactList& pc, ContactWork* work_or_null)
+  CandidateArrays(const Particles& p, ContactList& pc, ContactWork* work_or_null, bool unset)
       : count(static_cast<long>(pc.size())), x(p.x.data()), radius(p.radius.data()), slot_i(pc.slot_i.data()),
         slot_j(pc.slot_j.data()), active(pc.active.data()), bonded(pc.bonded.data()), spring(pc.spring.data()),
-        rolling(pc.rolling.data()), dashpot(pc.dashpot.data()), sum(pc.sum.data()), work(work_or_null) {}
+        rolling(pc.rolling.data()), dashpot(pc.dashpot.data()), sum(pc.sum.data()), work(work_or_null),
+        work_unset(work_or_null && unset) {}
 };
 
 // What pass 1 clears of a contact that ends: its history, its sum and (with the energy log) its
@@ -45,6 +47,11 @@ struct CandidateArrays {
 inline void clear_lost_contact(const CandidateArrays& a, long k) {
   a.spring[k] = Vec3::Zero(), a.rolling[k] = Vec3::Zero(), a.dashpot[k] = 0, a.sum[k] = ContactSum();
   if (a.work) a.work[k] = {Vec3::Zero(), Vec3::Zero()};
+}
+// Candidate k is no contact now: what pass 1 clears of it.
+inline void clear_no_contact(const CandidateArrays& a, long k, bool was) {
+  if (was) clear_lost_contact(a, k);
+  else if (a.work_unset) a.work[k] = {Vec3::Zero(), Vec3::Zero()};  // its history and sum are zeros already
 }
 
 // The contacts found in a chunk: candidate positions and separations x_j - x_i (nearest image),
@@ -85,7 +92,7 @@ inline int find_contacts_plain(const CandidateArrays& a, const PeriodicBox& box,
     m += now;
     // A candidate that was no contact already holds zeros (ContactList): in a dense bed most
     // candidates are such, and rewriting their 72 bytes every step cost memory bandwidth.
-    if (!now && was) clear_lost_contact(a, k);
+    if (!now && (was || a.work_unset)) clear_no_contact(a, k, was);
   }
   return m;
 }

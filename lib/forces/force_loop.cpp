@@ -46,15 +46,21 @@ struct ChunkInput {
   std::uint8_t stamp;     // the low byte of ForceBlocks::epoch
 };
 
+inline PairLawArrays with_broken(PairLawArrays a, std::vector<int>& broken) {
+  a.broken = &broken;
+  return a;
+}
+
 // The candidates [first, last) of one block. Periodic: distances to the nearest image; Fixed: some
 // particles are fixed in place. Both are template parameters so that a scene without them pays
 // nothing.
+// `broken`: the thread's list of the candidates whose bond breaks.
 template <class Model, bool Periodic, bool Fixed>
-double pair_chunk(const ChunkInput& chunk, long first, long last) {
+double pair_chunk(const ChunkInput& chunk, long first, long last, std::vector<int>& broken) {
   const PeriodicBox& box = chunk.in.periodic;
   const MaterialTable& materials = chunk.in.materials;
   const double dt = chunk.in.dt;
-  const PairLawArrays a = chunk.law;  // a copy: stores through its arrays cannot change it
+  const PairLawArrays a = with_broken(chunk.law, broken);  // a copy: stores through its arrays cannot change it
   // Pass 1 (find_contacts.hpp): which candidates are contacts, and their separations.
   int contact[kChunk + kFoundPadding];
   double dx[kChunk + kFoundPadding], dy[kChunk + kFoundPadding], dz[kChunk + kFoundPadding];
@@ -102,7 +108,9 @@ double pair_chunk(const ChunkInput& chunk, long first, long last) {
     const int i = a.slot_i[k], j = a.slot_j[k];
     const ContactKinematics& c = kin[e];
     const PairParams& params = materials.pair(a.material[i], a.material[j]);
-    const ContactForce f = Model::evaluate_in_plane(params, c, dt, a.spring[k], a.bonded[k], a.dashpot[k], a.rolling[k]);
+    std::uint8_t bond = a.bonded[k];
+    const ContactForce f = Model::evaluate_in_plane(params, c, dt, a.spring[k], bond, a.dashpot[k], a.rolling[k]);
+    keep_bond(a, k, bond);
     keep_pair_result(a, k, c.n, f);
     if constexpr (Model::has_rolling) a.rolling[k] = f.couple;  // summed with the loads (finish_block)
     worst = std::max(worst, relative_overlap_if_larger(c.overlap, std::min(a.radius[i], a.radius[j]), worst));
@@ -128,23 +136,27 @@ inline void wait_until_done(std::vector<long>& done, long b, long epoch) {
   }
 }
 
-// Working storage of the wall contacts, per thread, grown to the longest run and the most contacts
-// of a block, then kept (no allocation per step: OpenMP keeps its threads, and with them these).
-struct WallScratch {
-  std::vector<Vec3> to_wall;
-  std::vector<std::uint8_t> touching, take;
-  std::vector<int> order;
-  WallContactsFound found;  // the block's contacts, for the law (wall_law.hpp)
+// Each thread's working storage in the force loop, grown to the longest run of wall candidates, the
+// most wall contacts of a block and the most bonds broken, then kept (no allocation per step:
+// OpenMP keeps its threads, and with them these).
+struct ThreadScratch {
+  struct {
+    std::vector<Vec3> to_wall;
+    std::vector<std::uint8_t> touching, take;
+    std::vector<int> order;
+    WallContactsFound found;  // the block's contacts, for the law (wall_law.hpp)
+  } walls;
+  std::vector<int> broken_pairs, broken_walls;  // the candidates whose bond broke this step (ForceBlocks)
 };
 
 // The wall candidates of run r (one particle's, in order): which are contacts this step, those
 // appended to `found` with their kinematics; the others lose their history and sum.
 template <class Model>
-void find_wall_contacts(const ForceLoopInput& in, ContactList& wc, long r, WallScratch& scratch) {
+void find_wall_contacts(const ForceLoopInput& in, ContactList& wc, long r, ThreadScratch& scratch) {
   const Particles& p = in.particles;
   const int first = in.wall_runs[r], n = in.wall_runs[r + 1] - first;
   const int i = wc.slot_i[first];
-  auto& [to_wall, touching, take, order, found] = scratch;
+  auto& [to_wall, touching, take, order, found] = scratch.walls;
   if (static_cast<int>(to_wall.size()) < n) to_wall.resize(n), touching.resize(n), take.resize(n), order.resize(n);
   counted_wall_touches(p, in.geometry, wc, first, n, to_wall.data(), touching.data(), take.data(), order.data());
   for (int e = 0; e < n; ++e) take[e] = take[e] || wc.bonded[first + e];  // a bond holds regardless
@@ -331,18 +343,20 @@ void sum_pair_contacts(const ForceBlocks& out, const PairResults& r, const Parti
 // sums). Called once every block holding a pair contact of theirs has been computed.
 template <class Model>
 double finish_block(const ForceLoopInput& in, const ContactList& pc, ContactList& wc, ForceBlocks& out, long b,
-                    WallScratch& scratch, long& not_finite, StepWork& work) {
+                    ThreadScratch& scratch, long& not_finite, StepWork& work) {
   const Particles& p = in.particles;
   const long lo = b * out.block, hi = std::min(static_cast<long>(p.size()), lo + out.block);
   const PairResults r{pc.sum.data(), pc.rolling.data(), in.work};
   if (out.work) sum_pair_contacts<Model::has_rolling, true>(out, r, p, lo, hi);
   else sum_pair_contacts<Model::has_rolling, false>(out, r, p, lo, hi);
   // Its wall contacts: found run by run, their law on them all, their loads added in that order.
-  scratch.found.clear();
-  for (int q = in.wall_block_first[b]; q < in.wall_block_first[b + 1]; ++q) find_wall_contacts<Model>(in, wc, in.wall_run_order[q], scratch);
-  wall_law<Model>(PairLawArrays(p, wc, true, in.wall_work), scratch.found, in.dt, out.simd, in.any_bonds);
+  scratch.walls.found.clear();
+  for (int q = in.wall_block_first[b]; q < in.wall_block_first[b + 1]; ++q)
+    find_wall_contacts<Model>(in, wc, in.wall_run_order[q], scratch);
+  WallContactsFound& found = scratch.walls.found;
+  wall_law<Model>(with_broken(PairLawArrays(p, wc, true, in.wall_work), scratch.broken_walls), found, in.dt, out.simd, in.any_bonds);
   double power = 0;
-  const double worst = add_wall_loads<Model>(in, wc, scratch.found, out, out.wall_power ? &power : nullptr, out.step_work ? &work : nullptr);
+  const double worst = add_wall_loads<Model>(in, wc, found, out, out.wall_power ? &power : nullptr, out.step_work ? &work : nullptr);
   if (out.wall_power) out.wall_power[b] = power;
   if (out.body.fluid) out.body.add_fluid(p, lo, hi, out.force.data(), out.simd);
   if (out.motion) not_finite = std::max(not_finite, move_particles(out.motion->arrays, out.motion->constants, lo, hi));
@@ -356,7 +370,8 @@ double block_forces(const ForceLoopInput& in, ContactList& pc, ContactList& wc, 
   out.times.fit(blocks, [&](long b) { return out.first[b + 1] - out.first[b] + 1; });  // candidates, until timed
   out.done.resize(blocks);
   out.touched.resize(in.particles.size());  // new slots hold 0: before any epoch
-  const ChunkInput chunk{in, CandidateArrays(in.particles, pc, in.work), PairLawArrays(in.particles, pc, in.keep_pair_results, in.work),
+  const ChunkInput chunk{in, CandidateArrays(in.particles, pc, in.work, in.work_unset),
+                         PairLawArrays(in.particles, pc, in.keep_pair_results, in.work),
                          simd_loops_on(), out.touched.data(), static_cast<std::uint8_t>(out.epoch)};
   double worst = 0;
   long not_finite = -1;
@@ -367,18 +382,19 @@ double block_forces(const ForceLoopInput& in, ContactList& pc, ContactList& wc, 
     // time (core/block_times.hpp): candidates are stored along the particles' order, so a thread
     // mostly reads particles that stay in its own core's cache.
     const long start = out.times.run_start(t, threads), end = out.times.run_start(t + 1, threads);
-    static thread_local WallScratch scratch;
+    static thread_local ThreadScratch scratch;
     static thread_local std::vector<long> later;
-    WallScratch& mine = scratch;  // the thread's own, looked up once (each use of a thread_local looks it up)
+    ThreadScratch& mine = scratch;  // the thread's own, looked up once (each use of a thread_local looks it up)
     std::vector<long>& deferred = later;
     deferred.clear();
+    mine.broken_pairs.clear(), mine.broken_walls.clear();
     StepWork work;  // the thread's share of the step's work, while the energy log is on
     const long tick = out.epoch;
     const auto pairs_of = [&](long b) {
       if (t == lagging.thread) std::this_thread::sleep_for(std::chrono::microseconds(lagging.microseconds));
       for (long first = out.first[b]; first < out.first[b + 1]; first += kChunk) {
         const long last = std::min(out.first[b + 1], first + kChunk);
-        worst = std::max(worst, pair_chunk<Model, Periodic, Fixed>(chunk, first, last));
+        worst = std::max(worst, pair_chunk<Model, Periodic, Fixed>(chunk, first, last, mine.broken_pairs));
       }
       std::atomic_ref<long>(out.done[b]).store(tick, std::memory_order_release);
     };
@@ -408,6 +424,17 @@ double block_forces(const ForceLoopInput& in, ContactList& pc, ContactList& wc, 
 #pragma omp critical(dem_step_work)
       out.step_work->add(work);  // exact: in any order
     }
+    if (out.broken_pairs && (!mine.broken_pairs.empty() || !mine.broken_walls.empty())) {
+#pragma omp critical(dem_broken_bonds)
+      {
+        out.broken_pairs->insert(out.broken_pairs->end(), mine.broken_pairs.begin(), mine.broken_pairs.end());
+        out.broken_walls->insert(out.broken_walls->end(), mine.broken_walls.begin(), mine.broken_walls.end());
+      }
+    }
+  }
+  if (out.broken_pairs) {  // in the threads' order: made one
+    std::sort(out.broken_pairs->begin(), out.broken_pairs->end());
+    std::sort(out.broken_walls->begin(), out.broken_walls->end());
   }
   out.not_finite = not_finite;
   return worst;

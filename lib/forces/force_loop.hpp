@@ -39,6 +39,8 @@ struct ForceLoopInput {
   ContactWork* work = nullptr;       // per pair candidate: written by the law where the energy log is on;
                                      // zeros in every candidate that is no contact (pass 1 keeps them so)
   ContactWork* wall_work = nullptr;  // per wall candidate: the same
+  bool work_unset = false;           // `work` holds anything after a rebuild: pass 1 zeroes every candidate's
+                                     // that is no contact (in the parallel loop, not in a serial pass before)
 };
 
 // Each particle's net load, summed in the force loop in one order that depends on neither the
@@ -88,6 +90,10 @@ struct ForceBlocks {
   StepWork* step_work = nullptr;
   const StepWorkInput* particle_work = nullptr;
   long not_finite = -1;  // with motion: the last slot whose new state is not finite (move_particles)
+  // Where given (empty): on return, the pair and the wall candidates whose bond the law broke, in
+  // increasing order.
+  std::vector<int>* broken_pairs = nullptr;
+  std::vector<int>* broken_walls = nullptr;
 };
 
 // Tests only: thread `thread` of the force loop pauses `microseconds` before each block whose

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <type_traits>
+#include <vector>
 
 #include "contact/contact_law.hpp"
 #include "contact/contact_list.hpp"
@@ -45,6 +46,7 @@ struct PairLawArrays {
   ContactSum* sum;
   bool keep_normals;  // the normal of every contact (SimParams::keep_pair_results)
   ContactWork* work;  // per candidate, while the energy log is on (ForceLoopInput::work), else null
+  std::vector<int>* broken = nullptr;  // the thread's: each candidate whose bond breaks is appended
 
   PairLawArrays(const Particles& p, ContactList& pc, bool keep, ContactWork* work_or_null)
       : v(p.v.data()), w(p.w.data()), radius(p.radius.data()), mass(p.mass.data()), material(p.material.data()),
@@ -59,6 +61,12 @@ inline void keep_pair_result(const PairLawArrays& a, long k, const Vec3& n, cons
   if (a.keep_normals) a.normal[k] = n;
   a.sum[k] = {f.on_i, n.cross(f.tangential)};
   if (a.work) a.work[k] = {(f.normal - f.elastic) * n, f.tangential};
+}
+
+// The bond flag of contact k as its law leaves it; where the bond broke, k joins a.broken.
+inline void keep_bond(const PairLawArrays& a, long k, bool now) {
+  if (a.bonded[k] && !now) a.broken->push_back(static_cast<int>(k));
+  a.bonded[k] = now;
 }
 
 // overlap / radius where it may exceed `worst`, else 0: the division (one per contact) is done only
@@ -136,7 +144,7 @@ DEM_AVX2_INLINE void keep_results(const PairLawArrays& a, const int (&k)[4], int
     if (a.keep_normals) simd::store_xyz(a.normal[k[l]].data(), nl[l]);
     if constexpr (Couples) simd::store_xyz(a.rolling[k[l]].data(), m[l]);  // summed with the loads (force_loop.cpp)
     if (a.work) simd::store_xyz(a.work[k[l]].damping.data(), wd[l]), simd::store_xyz(a.work[k[l]].tangential.data(), wt[l]);
-    if (bonds) a.bonded[k[l]] = bonded.v[l] != 0;
+    if (bonds) keep_bond(a, k[l], bonded.v[l] != 0);
   }
 }
 

@@ -6,6 +6,7 @@
 // the plain loops. The same source, so the same bits. One at a time, each contact's law (a chain
 // of square roots and divisions) waited on itself, and the walls took a tenth of a settling
 // box's step (bench/results/design.md).
+#include <cstdint>
 #include <vector>
 
 #include "contact/contact_law.hpp"
@@ -122,7 +123,9 @@ void wall_law(const PairLawArrays& a, WallContactsFound& found, double dt, bool 
   for (int e = 0; e < found.size(); ++e) {
     const int k = found.k[e];
     const ContactKinematics c = found.kinematics(e);
-    const ContactForce f = Model::evaluate(*found.params[e], c, dt, a.spring[k], a.bonded[k], a.dashpot[k], a.rolling[k]);
+    std::uint8_t bond = a.bonded[k];
+    const ContactForce f = Model::evaluate(*found.params[e], c, dt, a.spring[k], bond, a.dashpot[k], a.rolling[k]);
+    keep_bond(a, k, bond);
     keep_pair_result(a, k, c.n, f);
     if constexpr (Model::has_rolling) a.rolling[k] = f.couple;
   }

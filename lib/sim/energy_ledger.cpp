@@ -156,10 +156,12 @@ void Simulation::account_energy(bool any_fixed) {
     s.kin_r.add(0.5 * p.inertia(k) * p.w[k].squaredNorm());
     s.potential.add(-p.mass[k] * params.gravity.dot(unwrapped_position(k) - 0.5 * dt * p.v[k]));
   };
-  // Some bond broke this step: its count fell (the force loop never makes one).
-  const bool breaks = (!ledger_pair_bonded_.empty() || !ledger_wall_bonded_.empty()) && bond_count() != ledger_bond_count_;
-  auto account_pair = [&](auto normal, std::size_t k, ContactTerms& t) {
-    const bool broke = breaks && k < ledger_pair_bonded_.size() && ledger_pair_bonded_[k] && !pairs_.bonded[k];
+  // The bonds the force loop broke this step (sorted): what they held is released.
+  const bool breaks = !broken_pairs_.empty() || !broken_walls_.empty();
+  const auto broke_now = [&](const std::vector<int>& broken, std::size_t k) {
+    return breaks && std::binary_search(broken.begin(), broken.end(), static_cast<int>(k));
+  };
+  auto account_pair = [&](auto normal, std::size_t k, bool broke, ContactTerms& t) {
     // Its work this step is its particles' (add_particle_work); what it holds, where it broke or is measured.
     if (!broke && !(measure && pairs_.active[k])) [[likely]]
       return;
@@ -172,8 +174,7 @@ void Simulation::account_energy(bool any_fixed) {
     account_held<decltype(normal)>(q, pairs_.spring[k], n, u, r_eff, pairs_.bonded[k], broke, p.v[i] - p.v[j], v0[i] - v0[j], dt, measure, t);
     if (measure && q.rolling != RollingLaw::None) account_rolling_spring(q, pairs_.rolling[k], p.w[i] - p.w[j], u, r_eff, dt, t);
   };
-  auto account_wall = [&](auto normal, std::size_t k, ContactTerms& t) {
-    const bool broke = breaks && k < ledger_wall_bonded_.size() && ledger_wall_bonded_[k] && !walls_.bonded[k];
+  auto account_wall = [&](auto normal, std::size_t k, bool broke, ContactTerms& t) {
     // Its work this step is the force loop's (add_wall_contact_work); what it holds, as a pair's.
     if (!broke && !(measure && walls_.active[k])) return;
     const int i = walls_.slot_i[k], w = walls_.slot_j[k];
@@ -193,8 +194,12 @@ void Simulation::account_energy(bool any_fixed) {
   // is kept, not thrown, and reported by value() after the region). A step with nothing to
   // measure, no bond broken and its particles' work done in the force loop needs no pass.
   StepSums sums;
+  // Measuring: every contact (those that broke among them); else only those that broke.
   const bool contacts = breaks || measure;
-  const long pair_count = contacts ? static_cast<long>(pairs_.size()) : 0, wall_count = contacts ? static_cast<long>(walls_.size()) : 0;
+  const long pair_count = measure ? static_cast<long>(pairs_.size()) : 0;
+  const long wall_count = measure ? static_cast<long>(walls_.size()) : 0;
+  const long pairs_broken = measure ? 0 : static_cast<long>(broken_pairs_.size());
+  const long walls_broken = measure ? 0 : static_cast<long>(broken_walls_.size());
   auto account_all = [&](auto normal) {
 #pragma omp parallel
     {
@@ -204,9 +209,13 @@ void Simulation::account_energy(bool any_fixed) {
 #pragma omp for schedule(static) nowait
       for (long lo = 0; lo < particle_work_count; lo += 1024) add_particle_work(p, work_input, lo, std::min(particle_work_count, lo + 1024), mine.work);
 #pragma omp for schedule(static) nowait
-      for (long k = 0; k < pair_count; ++k) account_pair(normal, k, mine.c);
+      for (long k = 0; k < pair_count; ++k) account_pair(normal, k, broke_now(broken_pairs_, k), mine.c);
 #pragma omp for schedule(static) nowait
-      for (long k = 0; k < wall_count; ++k) account_wall(normal, k, mine.c);
+      for (long k = 0; k < wall_count; ++k) account_wall(normal, k, broke_now(broken_walls_, k), mine.c);
+#pragma omp for schedule(static) nowait
+      for (long e = 0; e < pairs_broken; ++e) account_pair(normal, broken_pairs_[e], true, mine.c);
+#pragma omp for schedule(static) nowait
+      for (long e = 0; e < walls_broken; ++e) account_wall(normal, broken_walls_[e], true, mine.c);
 #pragma omp critical(dem_energy_ledger)
       sums.add(mine);
     }
@@ -219,8 +228,6 @@ void Simulation::account_energy(bool any_fixed) {
   const ContactTerms& t = sums.c;
   StepWork work = ledger_work_;
   work.add(sums.work);
-  ledger_pair_bonded_.clear();
-  ledger_wall_bonded_.clear();
   FibreTerms fibre_terms;
   if (!fibres.empty()) account_fibres(fibres, ledger_fibre_broken_, x0, v0, w0, p, dt, measure, fibre_terms);
 

@@ -49,26 +49,27 @@ void Simulation::advance() {
   if (!fibres.empty()) rotate_ties(fibres, particles, dt);  // the ties turn with their particles
   time += dt;
   ++step;
-  if (has_bonds_) count_bonds();  // bonds only ever break: stop paying once all are gone
+  if (has_bonds_) {  // bonds only ever break: stop paying once all are gone
+    bonds_ -= static_cast<long>(broken_pairs_.size() + broken_walls_.size());
+    has_bonds_ = bonds_ > 0;
+  }
 }
 
 void Simulation::compute_forces() { compute_loads(nullptr); }
 
 void Simulation::compute_loads(const MotionStep* motion) {
   find_contacts();
-  if (ledger.on && has_bonds_) ledger_pair_bonded_ = pairs_.bonded, ledger_wall_bonded_ = walls_.bonded, ledger_bond_count_ = bond_count();
   const bool any_fixed = particles.any_fixed();
   if (ledger.on) {  // the contacts' work for the energy ledger, per contact and per particle
-    if (!ledger_work_zeros_) ledger_contact_work_.assign(pairs_.size(), {Vec3::Zero(), Vec3::Zero()});
-    ledger_work_zeros_ = true;
+    ledger_contact_work_.resize(pairs_.size());
     ledger_wall_work_.resize(walls_.size());
     ledger_particle_work_.resize(particles.size());
-  } else {
-    ledger_work_zeros_ = false;  // pass 1 does not clear it while the log is off
   }
   const ForceLoopInput in{particles, materials, walls, wall_geometry_, wall_runs_, wall_run_order_, wall_block_first_, periodic,
                           any_fixed, has_bonds_, dt, params.keep_pair_results,
-                          ledger.on ? ledger_contact_work_.data() : nullptr, ledger.on ? ledger_wall_work_.data() : nullptr};
+                          ledger.on ? ledger_contact_work_.data() : nullptr, ledger.on ? ledger_wall_work_.data() : nullptr,
+                          ledger.on && !ledger_work_zeros_};
+  ledger_work_zeros_ = ledger.on;  // pass 1 zeroes it now, and keeps it so while the log stays on
   if (indexed_block_ != params.load_block) index_contacts_per_particle();
   const bool sum_wall_power = walls_move_ && energy_check_on();  // the energy check's (audit_energy)
   if (sum_wall_power) wall_power_.assign(block_first_.size() - 1, 0.0);  // per load block (ForceBlocks::wall_power)
@@ -81,6 +82,8 @@ void Simulation::compute_loads(const MotionStep* motion) {
                     block_done_,       touched_,       ++force_epoch_, body, simd_loops_on(), block_force_, block_torque_,
                     ledger.on ? ledger_particle_work_.data() : nullptr, sum_wall_power ? wall_power_.data() : nullptr,
                     motion};
+  broken_pairs_.clear(), broken_walls_.clear();
+  loads.broken_pairs = &broken_pairs_, loads.broken_walls = &broken_walls_;
   force_variant_ = choose_force_variant(materials, has_bonds());
   // The energy log: the step's work added where it arises, the particles' as each block moves.
   StepWorkInput particle_work;
@@ -234,7 +237,10 @@ std::size_t Simulation::bond_present_contacts(bool walls_too, double gap) {
   return n;
 }
 
-void Simulation::count_bonds() { has_bonds_ = bond_count() > 0; }
+void Simulation::count_bonds() {
+  bonds_ = bond_count();
+  has_bonds_ = bonds_ > 0;
+}
 
 long Simulation::bond_count() const {
   // The sum of the flags, which falls whenever one is cleared: a plain sum of bytes, vectorised.
@@ -329,6 +335,7 @@ void Simulation::find_contacts() {
   carry_history(walls_, wall_by_key_, neighbours_.wall_pairs(), wall_place_, carry_from_);
   neighbours_.release_found();  // carried over: free the memory until the next rebuild
   index_contacts_per_particle();
+  if (has_bonds_) count_bonds();  // a bonded candidate the search no longer lists is gone with its bond
 }
 
 KeyOrder& Simulation::pair_key_order() const {

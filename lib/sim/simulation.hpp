@@ -118,6 +118,7 @@ class Simulation {
   // many contacts were bonded.
   std::size_t bond_present_contacts(bool walls_too, double gap = 0);
   bool has_bonds() const { return has_bonds_; }
+  long bonds() const { return bonds_; }  // bonded pair and wall contacts now (kept as the force loop breaks them)
   // Whether pair_contacts()'s normals and forces are those of the last step (SimParams::keep_pair_results).
   bool pair_results_kept() const { return pair_results_kept_; }
 
@@ -187,6 +188,8 @@ class Simulation {
   StepWorkInput ledger_work_input(const FluidField* fluid, bool any_fixed) const;
 
   bool has_bonds_ = false;
+  long bonds_ = 0;  // bond_count(), kept by count_bonds() and the bonds each force loop breaks
+  std::vector<int> broken_pairs_, broken_walls_;  // the candidates whose bond the last force loop broke
   long bond_count() const;  // the sum of the pair and wall contacts' bonded flags (0: none bonded)
   bool pair_results_kept_ = true;
   EnergyBalance energy_;
@@ -234,12 +237,10 @@ class Simulation {
   // broke this step release their energy) and their count (none broke where it is unchanged: bonds
   // only break within a step).
   std::vector<Vec3> ledger_x_, ledger_v_, ledger_w_;
-  std::vector<std::uint8_t> ledger_pair_bonded_, ledger_wall_bonded_;
-  long ledger_bond_count_ = 0;
   std::vector<std::uint8_t> ledger_fibre_broken_;  // the fibre segments broken before the force loop
   std::vector<ContactWork> ledger_contact_work_;  // while ledger.on: what each pair contact's law left, per candidate
   bool ledger_work_zeros_ = false;  // every candidate of ledger_contact_work_ that is no contact holds zeros
-                                    // (kept so by pass 1 while the log is on; lost at a rebuild)
+                                    // (made and kept so by pass 1 while the log is on; lost at a rebuild)
   std::vector<ContactWork> ledger_wall_work_;     // while ledger.on: the same, per wall candidate
   std::vector<ParticleWork> ledger_particle_work_;  // while ledger.on: the force loop's, per slot
   StepWork ledger_work_;  // while ledger.on: the step's work the force loop added (ForceBlocks::step_work)
