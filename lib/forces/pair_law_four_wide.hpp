@@ -144,8 +144,15 @@ DEM_AVX2_INLINE void keep_results(const PairLawArrays& a, const int (&k)[4], int
     if (a.keep_normals) simd::store_xyz(a.normal[k[l]].data(), nl[l]);
     if constexpr (Couples) simd::store_xyz(a.rolling[k[l]].data(), m[l]);  // summed with the loads (force_loop.cpp)
     if (a.work) simd::store_xyz(a.work[k[l]].damping.data(), wd[l]), simd::store_xyz(a.work[k[l]].tangential.data(), wt[l]);
-    if (bonds) keep_bond(a, k[l], bonded.v[l] != 0);
+    if (bonds) a.bonded[k[l]] = bonded.v[l] != 0;
   }
+}
+// The lanes among the first `count` whose bond the law broke (bonded `before`, not `now`) join
+// a.broken (rare: apart from the loop above, whose stores the list's could otherwise alias).
+DEM_AVX2_INLINE void list_broken(const PairLawArrays& a, const int (&k)[4], int count, const Mask4& before, const Mask4& now) {
+  if (const int broke = simd::bits(before) & ~simd::bits(now) & ((1 << count) - 1)) [[unlikely]]
+    for (int l = 0; l < 4; ++l)
+      if (broke >> l & 1) a.broken->push_back(k[l]);
 }
 
 // Four contacts as the law takes them: their slots, kinematics and histories.
@@ -278,6 +285,7 @@ DEM_AVX2 double pair_law(const PairLawArrays a, const MaterialTable& materials, 
   // What the first `count` of them leave.
   const auto keep = [&](const FourContacts& g, int count, const LaneForce<Lanes4>& f, const V3& spring, const Lanes4& mark,
                         const Mask4& bonded) DEM_AVX2_LAMBDA {
+    if constexpr (Bonds) list_broken(a, g.k, count, g.bonded, bonded);
     keep_results<Model::has_rolling>(a, g.k, count, spring, g.c.n, f, mark, bonded, Bonds);
     // relative_overlap_if_larger's test on every lane with the four's first `worst`: where no lane
     // passes, none can with the larger values the loop below may reach (almost every four).

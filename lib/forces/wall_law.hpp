@@ -97,6 +97,7 @@ DEM_AVX2 void wall_law(const PairLawArrays a, const WallContactsFound& found, do
   };
   const auto keep = [&](const FourContacts& g, int count, const LaneForce<Lanes4>& f, const V3& spring, const Lanes4& mark,
                         const Mask4& bonded) DEM_AVX2_LAMBDA {
+    if constexpr (Bonds) list_broken(a, g.k, count, g.bonded, bonded);
     keep_results<Model::has_rolling>(a, g.k, count, spring, g.c.n, f, mark, bonded, Bonds);
   };
   eight_at_a_time<Model>(m, dt, law, take, keep);
