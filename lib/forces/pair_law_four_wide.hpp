@@ -165,12 +165,25 @@ struct FourContacts {
   Lanes4 ri, rj;
 };
 
+// The histories of the four contacts g.k (= k) as the law takes them: bond flags, springs turned
+// into the tangent plane of g.c.n, the rolling law's history, the dashpot's marks. Without bonds
+// (Bonds false: no contact of the scene holds one) every lane's flag is false.
+template <class Model, bool Bonds>
+DEM_AVX2_INLINE void take_histories(const PairLawArrays& a, FourContacts& g, simd::Ints4 k) {
+  using Tangential = typename Model::TangentialModel;
+  g.bonded = Bonds ? lanes::mask4(a.bonded[g.k[0]], a.bonded[g.k[1]], a.bonded[g.k[2]], a.bonded[g.k[3]]) : Mask4{};
+  g.spring = Tangential::in_tangent_plane(load_four(a.spring, g.k), g.c.n);
+  g.rolling = V3{};
+  if constexpr (Model::RollingModel::has_history) g.rolling = Tangential::in_tangent_plane(load_four(a.rolling, g.k), g.c.n);
+  g.mark = simd::gather(a.dashpot, k);
+}
+
 // The law of Model on m contacts, eight at a time (two fours interleaved, L = Two<Lanes4>; the
 // last four or fewer with L = Lanes4), lanes past the m-th repeating the last contact (computed,
 // never kept). take(e, g, half) reads the four contacts from e on into g and, where their
 // parameters differ from law[half]'s, sets law[half] and returns true; keep(g, count, f, spring,
 // mark, bonded) stores what the first `count` of them leave. Shared by the pair contacts (below)
-// and the wall contacts (wall_law_four_wide.hpp).
+// and the wall contacts (wall_law.hpp).
 template <class Model, class Take, class Keep>
 DEM_AVX2_INLINE void eight_at_a_time(int m, double dt, LawParams (&law)[2], Take&& take, Keep&& keep) {
   using T = lanes::Two<Lanes4>;
@@ -213,8 +226,6 @@ DEM_AVX2_INLINE void eight_at_a_time(int m, double dt, LawParams (&law)[2], Take
 // law and the lane operations are always inlined here, where AVX2 is allowed.
 template <class Model, bool Fixed, bool Bonds>
 DEM_AVX2 double pair_law(const PairLawArrays a, const MaterialTable& materials, double dt, const FoundInChunk found, int m) {
-  using Tangential = typename Model::TangentialModel;
-  constexpr bool kRollingHistory = Model::RollingModel::has_history;
   if (m == 0) return 0;
   // Lanes past the last contact repeat it: computed, never kept.
   for (int q = m; q < m + 3; ++q)
@@ -274,12 +285,7 @@ DEM_AVX2 double pair_law(const PairLawArrays a, const MaterialTable& materials, 
         law[half] = law_params(pp), law_i[half] = mat_i, law_j[half] = mat_j, changed = true;
       }
     }
-    // Without bonds (Bonds false: no contact of the scene holds one) every lane's flag is false.
-    g.bonded = Bonds ? lanes::mask4(a.bonded[g.k[0]], a.bonded[g.k[1]], a.bonded[g.k[2]], a.bonded[g.k[3]]) : Mask4{};
-    g.spring = Tangential::in_tangent_plane(load_four(a.spring, g.k), c.n);
-    g.rolling = V3{};
-    if constexpr (kRollingHistory) g.rolling = Tangential::in_tangent_plane(load_four(a.rolling, g.k), c.n);
-    g.mark = simd::gather(a.dashpot, k);
+    take_histories<Model, Bonds>(a, g, k);
     return changed;
   };
   // What the first `count` of them leave.

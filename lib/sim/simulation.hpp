@@ -233,9 +233,8 @@ class Simulation {
   // recomputed or the storage is sorted, and rebuilt from them before the force loop.
   FluidGrains fluid_grains_;
   double fluid_grains_for_[2] = {0, 0};
-  // While ledger.on: the state before the motion, and the bonds before the force loop (those that
-  // broke this step release their energy) and their count (none broke where it is unchanged: bonds
-  // only break within a step).
+  // While ledger.on: the state before the motion (the bonds that broke this step, which release
+  // their energy, are broken_pairs_ and broken_walls_).
   std::vector<Vec3> ledger_x_, ledger_v_, ledger_w_;
   std::vector<std::uint8_t> ledger_fibre_broken_;  // the fibre segments broken before the force loop
   std::vector<ContactWork> ledger_contact_work_;  // while ledger.on: what each pair contact's law left, per candidate
