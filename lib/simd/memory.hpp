@@ -32,31 +32,39 @@ DEM_AVX2_INLINE void store(double* p, Lanes4 a) { _mm256_storeu_pd(p, a.v); }
 DEM_AVX2_INLINE void store_aligned(double* p, Lanes4 a) { _mm256_store_pd(p, a.v); }
 DEM_AVX2_INLINE void store_aligned(int* p, Ints4 a) { _mm_store_si128(reinterpret_cast<__m128i*>(p), a.v); }
 
-// [p0 p1 p2 0] (a Vec3's doubles), and the first three lanes into p[0..2].
-DEM_AVX2_INLINE Lanes4 load_xyz(const double* p) { return _mm256_maskload_pd(p, _mm256_setr_epi64x(-1, -1, -1, 0)); }
-DEM_AVX2_INLINE void store_xyz(double* p, Lanes4 a) { _mm256_maskstore_pd(p, _mm256_setr_epi64x(-1, -1, -1, 0), a.v); }
+// [p0 p1 p2 0] (a Vec3's doubles), and the first three lanes into p[0..2]: plain loads and stores
+// of two and one doubles, not masked ones, which AMD's cores run microcoded (bench/results/design.md).
+DEM_AVX2_INLINE Lanes4 load_xyz(const double* p) {
+  return _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(p)), _mm_load_sd(p + 2), 1);
+}
+DEM_AVX2_INLINE void store_xyz(double* p, Lanes4 a) {
+  _mm_storeu_pd(p, _mm256_castpd256_pd128(a.v));
+  _mm_store_sd(p + 2, _mm256_extractf128_pd(a.v, 1));
+}
 
-// base[index] for four indices. (The masked forms: the plain ones start from an undefined
-// register, which GCC 12 warns may be used uninitialized.)
+// base[index] for four indices: four scalar loads, not a gather instruction, which AMD's cores run
+// as many slow micro-operations (bench/results/design.md).
 DEM_AVX2_INLINE Lanes4 gather(const double* base, Ints4 index) {
-  return _mm256_mask_i32gather_pd(_mm256_setzero_pd(), base, index.v, _mm256_castsi256_pd(_mm256_set1_epi64x(-1)), 8);
+  alignas(16) int k[4];
+  _mm_store_si128(reinterpret_cast<__m128i*>(k), index.v);
+  return _mm256_setr_pd(base[k[0]], base[k[1]], base[k[2]], base[k[3]]);
 }
 DEM_AVX2_INLINE Ints4 gather(const int* base, Ints4 index) {
-  return {_mm_mask_i32gather_epi32(_mm_setzero_si128(), base, index.v, _mm_set1_epi32(-1), 4)};
+  alignas(16) int k[4];
+  _mm_store_si128(reinterpret_cast<__m128i*>(k), index.v);
+  return {_mm_setr_epi32(base[k[0]], base[k[1]], base[k[2]], base[k[3]])};
 }
 
-// base[a], base[b], base[c], base[d] as x, y and z of the four: each vector read with one masked
-// load and the four transposed, in place of three gathers (faster: bench/results/design.md). The
+// base[a], base[b], base[c], base[d] as x, y and z of the four: each vector's x and y read as a
+// pair, its z alone, and the four transposed, in place of three gathers (bench/results/design.md). The
 // slots by value: read through a pointer here, pass 1's loop kept one more pointer and spilled a
 // register.
 DEM_AVX2_INLINE Triple<Lanes4> load_four(const Vec3* base, int a, int b, int c, int d) {
-  const __m256i xyz = _mm256_setr_epi64x(-1, -1, -1, 0);
-  const __m256d ra = _mm256_maskload_pd(base[a].data(), xyz), rb = _mm256_maskload_pd(base[b].data(), xyz);
-  const __m256d rc = _mm256_maskload_pd(base[c].data(), xyz), rd = _mm256_maskload_pd(base[d].data(), xyz);
-  const __m256d xz_ab = _mm256_unpacklo_pd(ra, rb), xz_cd = _mm256_unpacklo_pd(rc, rd);  // xa xb za zb, xc xd zc zd
-  const __m256d y_ab = _mm256_unpackhi_pd(ra, rb), y_cd = _mm256_unpackhi_pd(rc, rd);    // ya yb 0 0, yc yd 0 0
-  return {_mm256_permute2f128_pd(xz_ab, xz_cd, 0x20), _mm256_permute2f128_pd(y_ab, y_cd, 0x20),
-          _mm256_permute2f128_pd(xz_ab, xz_cd, 0x31)};
+  const double *pa = base[a].data(), *pb = base[b].data(), *pc = base[c].data(), *pd = base[d].data();
+  const __m256d xy_ac = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(pa)), _mm_loadu_pd(pc), 1);  // xa ya xc yc
+  const __m256d xy_bd = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(pb)), _mm_loadu_pd(pd), 1);  // xb yb xd yd
+  const __m128d z_ab = _mm_loadh_pd(_mm_load_sd(pa + 2), pb + 2), z_cd = _mm_loadh_pd(_mm_load_sd(pc + 2), pd + 2);
+  return {_mm256_unpacklo_pd(xy_ac, xy_bd), _mm256_unpackhi_pd(xy_ac, xy_bd), _mm256_insertf128_pd(_mm256_castpd128_pd256(z_ab), z_cd, 1)};
 }
 
 // For each set of lanes (a bit each, as bits() gives), the 32-bit lanes that move those lanes'
