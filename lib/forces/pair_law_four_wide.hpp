@@ -165,17 +165,17 @@ struct FourContacts {
   Lanes4 ri, rj;
 };
 
-// The histories of the four contacts g.k (= k) as the law takes them: bond flags, springs turned
+// The histories of the four contacts g.k as the law takes them: bond flags, springs turned
 // into the tangent plane of g.c.n, the rolling law's history, the dashpot's marks. Without bonds
 // (Bonds false: no contact of the scene holds one) every lane's flag is false.
 template <class Model, bool Bonds>
-DEM_AVX2_INLINE void take_histories(const PairLawArrays& a, FourContacts& g, simd::Ints4 k) {
+DEM_AVX2_INLINE void take_histories(const PairLawArrays& a, FourContacts& g) {
   using Tangential = typename Model::TangentialModel;
   g.bonded = Bonds ? lanes::mask4(a.bonded[g.k[0]], a.bonded[g.k[1]], a.bonded[g.k[2]], a.bonded[g.k[3]]) : Mask4{};
   g.spring = Tangential::in_tangent_plane(load_four(a.spring, g.k), g.c.n);
   g.rolling = V3{};
   if constexpr (Model::RollingModel::has_history) g.rolling = Tangential::in_tangent_plane(load_four(a.rolling, g.k), g.c.n);
-  g.mark = simd::gather(a.dashpot, k);
+  g.mark = simd::gather(a.dashpot, g.k);
 }
 
 // The law of Model on m contacts, eight at a time (two fours interleaved, L = Two<Lanes4>; the
@@ -260,14 +260,14 @@ DEM_AVX2 double pair_law(const PairLawArrays a, const MaterialTable& materials, 
     const V3 d = load3(found.dx + e, found.dy + e, found.dz + e);
     const Lanes4 dist = lanes::root(dot(d, d));
     c.n = d * (Lanes4(1.0) / dist);
-    const Lanes4 ri = simd::gather(a.radius, i), rj = simd::gather(a.radius, j);
+    const Lanes4 ri = simd::gather(a.radius, g.i), rj = simd::gather(a.radius, g.j);
     g.ri = ri, g.rj = rj;
     c.overlap = (ri + rj) - dist;
     c.v_rel = load_four(a.v, g.j) - load_four(a.v, g.i);
     const V3 wi = load_four(a.w, g.i), wj = load_four(a.w, g.j);
     c.w_arm = rj * wj + ri * wi;
     if constexpr (Model::has_rolling) c.w_rel = wi - wj;
-    const Lanes4 mi = simd::gather(a.mass, i), mj = simd::gather(a.mass, j);
+    const Lanes4 mi = simd::gather(a.mass, g.i), mj = simd::gather(a.mass, g.j);
     c.m_eff = (mi * mj) / (mi + mj);
     c.r_eff = (ri * rj) / (ri + rj);  // eq. H3 (a law that reads none: compiled away)
     if constexpr (Fixed) {  // effective_mass: against a fixed particle, the other's mass
@@ -276,7 +276,7 @@ DEM_AVX2 double pair_law(const PairLawArrays a, const MaterialTable& materials, 
                               lanes::select(lanes::mask4(fixed[g.j[0]], fixed[g.j[1]], fixed[g.j[2]], fixed[g.j[3]]), mi, c.m_eff));
     }
     if (many_materials) {
-      const simd::Ints4 mat_i = simd::gather(a.material, i), mat_j = simd::gather(a.material, j);
+      const simd::Ints4 mat_i = simd::gather(a.material, g.i), mat_j = simd::gather(a.material, g.j);
       if (!(simd::same(mat_i, law_i[half]) && simd::same(mat_j, law_j[half]))) {
         alignas(16) int ml_i[4], ml_j[4];
         simd::store_aligned(ml_i, mat_i), simd::store_aligned(ml_j, mat_j);
@@ -285,7 +285,7 @@ DEM_AVX2 double pair_law(const PairLawArrays a, const MaterialTable& materials, 
         law[half] = law_params(pp), law_i[half] = mat_i, law_j[half] = mat_j, changed = true;
       }
     }
-    take_histories<Model, Bonds>(a, g, k);
+    take_histories<Model, Bonds>(a, g);
     return changed;
   };
   // What the first `count` of them leave.

@@ -86,7 +86,7 @@ DEM_AVX2 void wall_law(const PairLawArrays a, const WallContactsFound& found, do
     c.m_eff = simd::load(found.m_eff.data() + e);
     c.r_eff = simd::load(found.r_eff.data() + e);
     if constexpr (Model::has_rolling) c.w_rel = load_four(found.w_rel.data(), at);
-    take_histories<Model, Bonds>(a, g, simd::load(found.k.data() + e));
+    take_histories<Model, Bonds>(a, g);
     return changed;
   };
   const auto keep = [&](const FourContacts& g, int count, const LaneForce<Lanes4>& f, const V3& spring, const Lanes4& mark,

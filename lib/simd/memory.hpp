@@ -32,27 +32,23 @@ DEM_AVX2_INLINE void store(double* p, Lanes4 a) { _mm256_storeu_pd(p, a.v); }
 DEM_AVX2_INLINE void store_aligned(double* p, Lanes4 a) { _mm256_store_pd(p, a.v); }
 DEM_AVX2_INLINE void store_aligned(int* p, Ints4 a) { _mm_store_si128(reinterpret_cast<__m128i*>(p), a.v); }
 
-// [p0 p1 p2 0] (a Vec3's doubles), and the first three lanes into p[0..2]: plain loads and stores
-// of two and one doubles, not masked ones, which AMD's cores run microcoded (bench/results/design.md).
-DEM_AVX2_INLINE Lanes4 load_xyz(const double* p) {
-  return _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(p)), _mm_load_sd(p + 2), 1);
-}
+// The first three lanes into p[0..2] (a Vec3's doubles): plain stores of two and one doubles, not
+// a masked one, which AMD's cores run microcoded (bench/results/design.md).
 DEM_AVX2_INLINE void store_xyz(double* p, Lanes4 a) {
   _mm_storeu_pd(p, _mm256_castpd256_pd128(a.v));
   _mm_store_sd(p + 2, _mm256_extractf128_pd(a.v, 1));
 }
 
-// base[index] for four indices: four scalar loads, not a gather instruction, which AMD's cores run
-// as many slow micro-operations (bench/results/design.md).
-DEM_AVX2_INLINE Lanes4 gather(const double* base, Ints4 index) {
+// base[k[0..3]]: four scalar loads, not a gather instruction, which AMD's cores run as many slow
+// micro-operations (bench/results/design.md).
+DEM_AVX2_INLINE Lanes4 gather(const double* base, const int (&k)[4]) { return _mm256_setr_pd(base[k[0]], base[k[1]], base[k[2]], base[k[3]]); }
+DEM_AVX2_INLINE Ints4 gather(const int* base, const int (&k)[4]) { return {_mm_setr_epi32(base[k[0]], base[k[1]], base[k[2]], base[k[3]])}; }
+// The same with the indices in a register (stored first: where they are already stored, pass those).
+template <class T>
+DEM_AVX2_INLINE auto gather(const T* base, Ints4 index) {
   alignas(16) int k[4];
-  _mm_store_si128(reinterpret_cast<__m128i*>(k), index.v);
-  return _mm256_setr_pd(base[k[0]], base[k[1]], base[k[2]], base[k[3]]);
-}
-DEM_AVX2_INLINE Ints4 gather(const int* base, Ints4 index) {
-  alignas(16) int k[4];
-  _mm_store_si128(reinterpret_cast<__m128i*>(k), index.v);
-  return {_mm_setr_epi32(base[k[0]], base[k[1]], base[k[2]], base[k[3]])};
+  store_aligned(k, index);
+  return gather(base, k);
 }
 
 // base[a], base[b], base[c], base[d] as x, y and z of the four: each vector's x and y read as a
