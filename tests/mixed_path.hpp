@@ -1,6 +1,6 @@
 #pragma once
 // Material `m` beside a second one of another normal law that no particle uses: the force loop then
-// takes the per-contact ("mixed") path of lib/forces/force_loop.cpp for every contact, which must
+// takes the per-contact ("mixed") path of lib/forces/block_forces.hpp for every contact, which must
 // give the physics the compiled path gives.
 #include <gtest/gtest.h>
 

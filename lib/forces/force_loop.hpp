@@ -103,7 +103,7 @@ void set_lagging_thread_for_tests(int thread, int microseconds);
 
 // Which instantiation of the force loop runs: the sub-models every pair shares
 // (contact/model_table.hpp; while no contact is bonded, the normal law each acts as then: liu and
-// mendes act exactly as cundall) where that combination is compiled (force_loop.cpp, kCompiled),
+// mendes act exactly as cundall) where that combination is compiled (force_loop_units.hpp, kCompiled),
 // or none: the laws chosen per contact ("mixed").
 using ForceVariant = std::optional<ModelChoice>;
 ForceVariant choose_force_variant(const MaterialTable& materials, bool any_bonds);

@@ -4,11 +4,11 @@
 // the order of its contacts' keys (forces/force_loop.hpp), its normal where kept, and its rolling
 // couple where the model has one.
 //
-// The plain version is three loops in force_loop.cpp (any model); a model whose sub-models are all
+// The plain version is three loops in block_forces.hpp (any model); a model whose sub-models are all
 // written over lanes (ContactModel::four_wide: every normal law, with either tangential law and
 // any rolling law; contact/contact_law.hpp, simd/lanes.hpp) also runs eight contacts at a time,
 // as two sets of four lanes, with AVX2 here: the same source, so the same bits. A template here,
-// instantiated by force_loop.cpp for the models it compiles (so that the two lists cannot disagree).
+// instantiated by block_forces.hpp for the models the force_loop_<law>.cpp units compile (so that the two lists cannot disagree).
 #include <algorithm>
 #include <cstdint>
 #include <type_traits>
@@ -142,7 +142,7 @@ DEM_AVX2_INLINE void keep_results(const PairLawArrays& a, const int (&k)[4], int
     simd::store_xyz(a.sum[k[l]].force.data(), f[l]);
     simd::store_xyz(a.sum[k[l]].torque_per_radius.data(), t[l]);
     if (a.keep_normals) simd::store_xyz(a.normal[k[l]].data(), nl[l]);
-    if constexpr (Couples) simd::store_xyz(a.rolling[k[l]].data(), m[l]);  // summed with the loads (force_loop.cpp)
+    if constexpr (Couples) simd::store_xyz(a.rolling[k[l]].data(), m[l]);  // summed with the loads (block_forces.hpp)
     if (a.work) simd::store_xyz(a.work[k[l]].damping.data(), wd[l]), simd::store_xyz(a.work[k[l]].tangential.data(), wt[l]);
     if (bonds) a.bonded[k[l]] = bonded.v[l] != 0;
   }
@@ -221,7 +221,7 @@ DEM_AVX2_INLINE void eight_at_a_time(int m, double dt, LawParams (&law)[2], Take
   }
 }
 
-// The kinematics of force_loop.cpp's plain pass 2 and the law of contact/contact_law.hpp with
+// The kinematics of block_forces.hpp's plain pass 2 and the law of contact/contact_law.hpp with
 // Model, eight contacts at a time (eight_at_a_time): the same operations in the same order. The
 // law and the lane operations are always inlined here, where AVX2 is allowed.
 template <class Model, bool Fixed, bool Bonds>

@@ -1,5 +1,5 @@
 #pragma once
-// The law on the wall contacts of one block of particles (force_loop.cpp, finish_block). Each
+// The law on the wall contacts of one block of particles (block_forces.hpp, finish_block). Each
 // particle's run of wall candidates is first sorted into contacts and not (their kinematics are
 // gathered here, in WallContactsFound); the law then runs on all of the block's contacts together:
 // eight at a time with AVX2 (the pair contacts' loop, pair_law_four_wide.hpp), or one at a time in
