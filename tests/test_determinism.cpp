@@ -121,6 +121,30 @@ Simulation make_pressed_lattice(bool x_walls = false) {
 // bits particle by particle (matched by id), with periodic axes and with walls (and each wall's
 // load the same bits). The scene can tell: each sphere's six contact forces summed in another
 // order give other bits for some sphere.
+// SimParams::parallel_min_particles: a step of fewer particles runs on one thread, a larger one on
+// all, and the caller's thread count is back after the step; the bits are those of two threads
+// throughout (the pressed lattice: 1,000 spheres, every sum of six contacts).
+TEST(Determinism, SmallScenesStepOnOneThreadWithTheSameBits) {
+  const int threads_before = omp_get_max_threads();
+  omp_set_num_threads(2);
+  Simulation all = make_pressed_lattice(true), cut = make_pressed_lattice(true);
+  cut.params.parallel_min_particles = 1001;  // one more than the lattice: below the cut-off
+  for (int s = 0; s < 60; ++s) {
+    all.advance(), cut.advance();
+    ASSERT_EQ(all.step_threads(), 2);
+    ASSERT_EQ(cut.step_threads(), 1);
+    ASSERT_EQ(omp_get_max_threads(), 2) << "the thread count before the step is restored";
+  }
+  ASSERT_GT(all.pair_contact_count(), 500u) << "the test must exercise contacts";
+  EXPECT_TRUE(same_bits(all.particles.x, cut.particles.x));
+  EXPECT_TRUE(same_bits(all.particles.v, cut.particles.v));
+  EXPECT_TRUE(same_bits(all.particles.w, cut.particles.w));
+  cut.params.parallel_min_particles = 1000;  // the lattice's size: at the cut-off, all threads
+  cut.advance();
+  EXPECT_EQ(cut.step_threads(), 2);
+  omp_set_num_threads(threads_before);
+}
+
 TEST(Determinism, StorageOrderAndThreadsChangeNoBit) {
   const int threads_before = omp_get_max_threads();
   constexpr int kSteps = 60;

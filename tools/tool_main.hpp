@@ -6,11 +6,11 @@
 #include <cstdio>
 #include <functional>
 #include <string>
-#include <omp.h>
 
 #include "core/error.hpp"
 #include "core/interval.hpp"
 #include "core/version.hpp"
+#include "run/setup.hpp"
 
 namespace dem {
 
@@ -73,7 +73,7 @@ inline int run_tool(CLI::App& app, int argc, char** argv, int& threads, const st
     app.exit(e);
     return kExitUsage;
   }
-  if (threads > 0) omp_set_num_threads(threads);
+  choose_threads(threads);
   // Past a file-size limit (ulimit -f) a write should fail with an error we report, not kill us.
   std::signal(SIGXFSZ, SIG_IGN);
   const std::string name = app.get_name();

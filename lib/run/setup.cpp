@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdlib>
 #include <map>
 #include <string>
 #include <unordered_map>
@@ -10,9 +11,21 @@
 #include <iostream>
 #include <sstream>
 
+#include <omp.h>
+
 #include "core/error.hpp"
 
 namespace dem {
+
+namespace {
+bool threads_given = false;  // choose_threads
+}  // namespace
+
+void choose_threads(int threads) {
+  if (threads > 0) omp_set_num_threads(threads), threads_given = true;
+}
+
+bool threads_chosen() { return threads_given || std::getenv("OMP_NUM_THREADS") != nullptr; }
 
 SimParams params_from(const Scene& scene) {
   SimParams p;
@@ -23,6 +36,9 @@ SimParams params_from(const Scene& scene) {
   p.max_overlap = scene.simulation.max_overlap;
   p.max_energy_gain = scene.simulation.max_energy_gain;
   p.sort_every = scene.simulation.sort_every;
+  // Small scenes step on one thread unless the user chose the thread count: below about 2,000
+  // spheres two threads are slower than one (bench/results/scaling.md "Small scenes").
+  p.parallel_min_particles = threads_chosen() ? 0 : kParallelMinParticles;
   return p;
 }
 

@@ -6,6 +6,12 @@
 
 namespace dem {
 
+// The size below which the tools step on one thread (SimParams::parallel_min_particles), unless
+// the user chose the thread count: --threads (choose_threads) or OMP_NUM_THREADS.
+constexpr long kParallelMinParticles = 2000;
+void choose_threads(int threads);  // the tools' --threads N (0: not given), as given
+bool threads_chosen();
+
 // Body forces, global damping, skin and overlap limit of a scene ([simulation]).
 SimParams params_from(const Scene& scene);
 

@@ -427,6 +427,7 @@ void run_stage(const StageOptions& o) {
       m << "run-stage: stage " << stage->name << " done: " << sim.step - loop_first_step << " steps";
       if (loop_first_step != run.stage_start_step) m << " (resumed at step " << loop_first_step - run.stage_start_step << ")";
       m << " in " << wall << " s wall time, " << (wall > 0 ? particle_steps / wall : 0.0) << " particle-steps/s";
+      m << " on " << sim.step_threads() << (sim.step_threads() == 1 ? " thread" : " threads");  // the last step's
       if (!health.last_line().empty()) m << "; at the end " << health.last_line();
       m << "\n";
       std::cerr << m.str();

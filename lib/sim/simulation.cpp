@@ -27,7 +27,27 @@ bool motion_apart_for_tests = false;  // set_motion_apart_for_tests
 
 void set_motion_apart_for_tests(bool apart) { motion_apart_for_tests = apart; }
 
+namespace {
+// One thread for the scope where `on` (SimParams::parallel_min_particles), then the count before.
+class OneThreadIf {
+ public:
+  explicit OneThreadIf(bool on) : before_(on ? omp_get_max_threads() : 0) {
+    if (on) omp_set_num_threads(1);
+  }
+  ~OneThreadIf() {
+    if (before_ > 0) omp_set_num_threads(before_);
+  }
+  OneThreadIf(const OneThreadIf&) = delete;
+  OneThreadIf& operator=(const OneThreadIf&) = delete;
+
+ private:
+  int before_;
+};
+}  // namespace
+
 void Simulation::advance() {
+  const OneThreadIf small(static_cast<long>(particles.size()) < params.parallel_min_particles);
+  step_threads_ = omp_get_max_threads();
   if (params.sort_every > 0 && step % params.sort_every == 0 && static_cast<long>(particles.size()) >= params.sort_min_particles)
     sort_storage();
   const bool any_fixed = particles.any_fixed();

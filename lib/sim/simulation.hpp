@@ -41,6 +41,11 @@ struct SimParams {
   // changes a bit.
   long sort_every = 1000;
   long sort_min_particles = 10000;
+  // A step of fewer particles than this runs on one thread: on a small scene the parallel regions'
+  // barriers cost more than more cores save (about 2,000 spheres on two cores,
+  // bench/results/scaling.md "Small scenes"). 0 = every step on all threads. The tools set it
+  // (run/setup.cpp); speed only: no thread count changes a bit.
+  long parallel_min_particles = 0;
   // Blocks of storage slots (ForceBlocks): the unit of work a thread takes in the force loop and
   // the integration, small for fine shares. Speed only.
   long load_block = 256;
@@ -145,6 +150,7 @@ class Simulation {
 
   double skin() const;  // the neighbour-list skin in use [m]
   std::int64_t neighbour_builds() const { return neighbours_.builds(); }
+  int step_threads() const { return step_threads_; }  // the threads the last step ran on (parallel_min_particles)
 
   double kinetic_energy() const;  // translational + rotational [J], summed in id order
   // The energy balance of the unstable-run check since its reference step (the first step, or the
@@ -244,6 +250,7 @@ class Simulation {
   std::vector<ParticleWork> ledger_particle_work_;  // while ledger.on: the force loop's, per slot
   StepWork ledger_work_;  // while ledger.on: the step's work the force loop added (ForceBlocks::step_work)
   bool ledger_particles_done_ = false;  // whether that includes the particles' (the motion ran in the loop)
+  int step_threads_ = 0;                // step_threads()
   std::optional<ModelChoice> force_variant_;  // the force loop's this step (force_loop.hpp's ForceVariant)
 };
 
