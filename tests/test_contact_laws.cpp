@@ -22,6 +22,7 @@
 #include "contact/model_table.hpp"
 #include "core/error.hpp"
 #include "forces/force_loop.hpp"
+#include "forces/force_loop_units.hpp"
 #include "sim/simulation.hpp"
 
 namespace dem {
@@ -477,6 +478,27 @@ TEST(LiuBond, SimulationCarriesTensionUpToStrengthThenBreaks) {
   std::printf("  liu sim: (F - max tension)/(kn ds) = %.3f, (s_break - F/kn)/ds = %.3f\n", (kStrength - r.max_tension) / df,
               (r.s_break - kStrength / kKn) / r.step_ds);
   EXPECT_LE(push_back_and_pull(sim, kPullRate, r.s_break), 0.0) << "no attraction after the break";
+}
+
+// Every combination of sub-models the force loop compiles (kCompiled) is compiled by exactly one
+// of the force_loop_<law>.cpp units, and any other by none (it runs the mixed loop): a law added to
+// kCompiled without a unit, or compiled by two, fails here rather than at a user's first step.
+TEST(ForceLoop, EachCompiledCombinationHasOneUnit) {
+  int compiled_count = 0;
+  for (int n = 0; n < kNormalLaws; ++n)
+    for (int t = 0; t < kTangentialLaws; ++t)
+      for (int r = 0; r < kRollingLaws; ++r) {
+        const ModelChoice m{static_cast<NormalLaw>(n), static_cast<TangentialLaw>(t), static_cast<RollingLaw>(r)};
+        const bool compiled = with_compiled_model(m, [](auto model) { return !std::is_same_v<decltype(model), MixedModel>; });
+        int units = 0;
+        for (const auto unit : kForceLoopUnits)
+          units += unit(m) != nullptr;
+        EXPECT_EQ(units, compiled ? 1 : 0) << variant_name(m);
+        compiled_count += compiled;
+      }
+  EXPECT_GT(compiled_count, 0);
+  EXPECT_LT(compiled_count, kNormalLaws * kTangentialLaws * kRollingLaws) << "some combination runs the mixed loop";
+  EXPECT_NE(mixed_force_loop(), nullptr);
 }
 
 // An unbonded liu pair, with the liu force loop active (another pair far away is bonded), carries

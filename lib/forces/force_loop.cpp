@@ -68,7 +68,7 @@ void select_wall_contacts(const Vec3* to_wall, const std::uint8_t* touching, int
 ForceVariant choose_force_variant(const MaterialTable& materials, bool any_bonds) {
   const std::optional<ModelChoice> m = materials.common_models(any_bonds);
   if (!m) return std::nullopt;
-  const bool compiled = with_compiled_model(*m, [](auto model) { return !std::is_same_v<typename decltype(model)::NormalModel, MixedNormal>; });
+  const bool compiled = with_compiled_model(*m, [](auto model) { return !std::is_same_v<decltype(model), MixedModel>; });
   return compiled ? m : std::nullopt;
 }
 
@@ -83,7 +83,7 @@ std::string variant_name(ForceVariant v) {
 double compute_contact_forces(const ForceLoopInput& in, ForceVariant variant, ContactList& pairs, ContactList& walls,
                               ForceBlocks& loads) {
   if (!variant) return mixed_force_loop()(in, pairs, walls, loads);
-  for (const auto unit : {cundall_force_loop, bonded_force_loop, hertz_force_loop, hertz_mindlin_force_loop})
+  for (const auto unit : kForceLoopUnits)
     if (const ForceLoopFn loop = unit(*variant)) return loop(in, pairs, walls, loads);
   // choose_force_variant gives compiled combinations only: kCompiled holds one no unit takes.
   throw std::logic_error("the force loop of " + variant_name(variant) + " is compiled by no unit (force_loop_units.hpp)");

@@ -45,6 +45,9 @@ ForceLoopFn bonded_force_loop(ModelChoice m);         // force_loop_bonded.cpp: 
 ForceLoopFn hertz_force_loop(ModelChoice m);          // force_loop_hertz.cpp: hertz with coulomb
 ForceLoopFn hertz_mindlin_force_loop(ModelChoice m);  // force_loop_hertz_mindlin.cpp
 ForceLoopFn mixed_force_loop();                       // force_loop_mixed.cpp: MixedModel
+// The units of the compiled combinations, asked in turn (compute_contact_forces).
+inline constexpr ForceLoopFn (*kForceLoopUnits[])(ModelChoice) = {cundall_force_loop, bonded_force_loop, hertz_force_loop,
+                                                                   hertz_mindlin_force_loop};
 
 // set_lagging_thread_for_tests (force_loop.hpp): set between steps, read by the loops' threads.
 struct LaggingThread {
