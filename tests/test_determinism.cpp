@@ -114,13 +114,6 @@ Simulation make_pressed_lattice(bool x_walls = false) {
   return sim;
 }
 
-// Each particle's contact forces are added in the order of its contacts' keys (particle ids), so
-// neither the storage order nor the thread count changes a bit. The pressed lattice, stored as
-// built (never sorted), shuffled (never sorted), and shuffled and sorted along the cells every 7
-// steps, on one, two and three threads, with blocks of 16 slots and of 256, ends with the same
-// bits particle by particle (matched by id), with periodic axes and with walls (and each wall's
-// load the same bits). The scene can tell: each sphere's six contact forces summed in another
-// order give other bits for some sphere.
 // SimParams::parallel_min_particles: a step of fewer particles runs on one thread, a larger one on
 // all, and the caller's thread count is back after the step; the bits are those of two threads
 // throughout (the pressed lattice: 1,000 spheres, every sum of six contacts).
@@ -145,6 +138,13 @@ TEST(Determinism, SmallScenesStepOnOneThreadWithTheSameBits) {
   omp_set_num_threads(threads_before);
 }
 
+// Each particle's contact forces are added in the order of its contacts' keys (particle ids), so
+// neither the storage order nor the thread count changes a bit. The pressed lattice, stored as
+// built (never sorted), shuffled (never sorted), and shuffled and sorted along the cells every 7
+// steps, on one, two and three threads, with blocks of 16 slots and of 256, ends with the same
+// bits particle by particle (matched by id), with periodic axes and with walls (and each wall's
+// load the same bits). The scene can tell: each sphere's six contact forces summed in another
+// order give other bits for some sphere.
 TEST(Determinism, StorageOrderAndThreadsChangeNoBit) {
   const int threads_before = omp_get_max_threads();
   constexpr int kSteps = 60;

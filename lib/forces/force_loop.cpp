@@ -68,8 +68,7 @@ void select_wall_contacts(const Vec3* to_wall, const std::uint8_t* touching, int
 ForceVariant choose_force_variant(const MaterialTable& materials, bool any_bonds) {
   const std::optional<ModelChoice> m = materials.common_models(any_bonds);
   if (!m) return std::nullopt;
-  const bool compiled = with_compiled_model(*m, [](auto model) { return !std::is_same_v<decltype(model), MixedModel>; });
-  return compiled ? m : std::nullopt;
+  return is_compiled(*m) ? m : std::nullopt;
 }
 
 std::string variant_name(ForceVariant v) {

@@ -39,6 +39,11 @@ decltype(auto) with_compiled_model(ModelChoice m, F&& f) {
   });
 }
 
+// Whether the force loop compiles the models of `m` (kCompiled), else it runs the mixed loop.
+inline bool is_compiled(ModelChoice m) {
+  return with_compiled_model(m, [](auto model) { return !std::is_same_v<decltype(model), MixedModel>; });
+}
+
 // Each unit's loops: the one for `m` where that unit compiles it, else nullptr.
 ForceLoopFn cundall_force_loop(ModelChoice m);        // force_loop_cundall.cpp
 ForceLoopFn bonded_force_loop(ModelChoice m);         // force_loop_bonded.cpp: liu, mendes
