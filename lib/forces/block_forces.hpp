@@ -147,6 +147,12 @@ struct ThreadScratch {
     WallContactsFound found;  // the block's contacts, for the law (wall_law.hpp)
   } walls;
   std::vector<int> broken_pairs, broken_walls;  // the candidates whose bond broke this step (ForceBlocks)
+  // A block's contact sums for the ledger and its state before the motion, where only its own
+  // particle work reads them (finish_block): in cache, not written to per-slot arrays.
+  struct {
+    std::vector<ParticleWork> work;
+    std::vector<Vec3> x, v, w;
+  } block;
 };
 
 // The wall candidates of run r (one particle's, in order): which are contacts this step, those
@@ -209,11 +215,12 @@ void find_wall_contacts(const ForceLoopInput& in, ContactList& wc, long r, Threa
 
 // The loads of the wall contacts `found` (their law done) added to their particles', in order;
 // with `power`, the walls' power f · v_wall at the contact points added to it; with `work` (the
-// energy log), each contact's part of the step's work (add_wall_contact_work). Returns the
-// largest relative overlap.
+// energy log), each contact's part of the step's work (add_wall_contact_work), its forces joining
+// its particle's sums in `block_work` (the block's, from slot lo on). Returns the largest relative
+// overlap.
 template <class Model>
 double add_wall_loads(const ForceLoopInput& in, ContactList& wc, const WallContactsFound& found, ForceBlocks& out, double* power,
-                      StepWork* work) {
+                      StepWork* work, ParticleWork* block_work, long lo) {
   const Particles& p = in.particles;
   double worst = 0;
   for (int e = 0; e < found.size(); ++e) {
@@ -226,7 +233,7 @@ double add_wall_loads(const ForceLoopInput& in, ContactList& wc, const WallConta
     if constexpr (Model::has_rolling) out.torque[i].v += couple;  // eq. R1
     if (power) *power += s.force.dot(found.v_wall[e]);
     if (work)
-      add_wall_contact_work(in.wall_work[k], s, couple, found.v_wall[e], in.geometry[wc.slot_j[k]].spin, in.dt, out.work[i], *work);
+      add_wall_contact_work(in.wall_work[k], s, couple, found.v_wall[e], in.geometry[wc.slot_j[k]].spin, in.dt, block_work[i - lo], *work);
     worst = std::max(worst, relative_overlap_if_larger(found.overlap[e], p.radius[i], worst));
   }
   return worst;
@@ -278,7 +285,8 @@ struct PairResults {
 // ForceBlocks::work, mere candidates' zeros included (pass 1 keeps them zero: no branch per
 // candidate, whose outcome the predictor could not guess).
 template <class V, bool Couples, bool Ledger>
-[[gnu::always_inline]] inline void sum_loads(const ForceBlocks& out, const PairResults& r, const Particles& p, long lo, long hi) {
+[[gnu::always_inline]] inline void sum_loads(const ForceBlocks& out, const PairResults& r, const Particles& p, long lo, long hi,
+                                             ParticleWork* block_work) {
   const int* const by_key = out.by_key.data();
   const int* const start = out.by_key_start.data();
   const int* const split = out.by_key_split.data();
@@ -293,8 +301,8 @@ template <class V, bool Couples, bool Ledger>
     if (touched[i] != stamp) {  // mere candidates only: zeros to add
       put(force[i], f);
       put(torque[i], zero);
-      if constexpr (Ledger) put(out.work[i].damping, zero), put(out.work[i].tangential, zero), put(out.work[i].torque_per_radius, zero);
-      if constexpr (Ledger && Couples) put(out.work[i].couple, zero);
+      if constexpr (Ledger) put(block_work[i - lo].damping, zero), put(block_work[i - lo].tangential, zero), put(block_work[i - lo].torque_per_radius, zero);
+      if constexpr (Ledger && Couples) put(block_work[i - lo].couple, zero);
       continue;
     }
     V force_k, torque_k, damping_k, tangential_k;
@@ -315,26 +323,26 @@ template <class V, bool Couples, bool Ledger>
     put(force[i], f);
     if constexpr (Couples) put(torque[i], V(V(radius[i] * arm) + spin));
     else put(torque[i], V(radius[i] * arm));
-    if constexpr (Ledger) put(out.work[i].damping, damping), put(out.work[i].tangential, tangential), put(out.work[i].torque_per_radius, arm);
-    if constexpr (Ledger && Couples) put(out.work[i].couple, spin);  // without couples, never read (StepWorkInput::rolling)
+    if constexpr (Ledger) put(block_work[i - lo].damping, damping), put(block_work[i - lo].tangential, tangential), put(block_work[i - lo].torque_per_radius, arm);
+    if constexpr (Ledger && Couples) put(block_work[i - lo].couple, spin);  // without couples, never read (StepWorkInput::rolling)
   }
 }
 template <bool Couples, bool Ledger>
-void sum_pair_contacts_plain(const ForceBlocks& out, const PairResults& r, const Particles& p, long lo, long hi) {
-  sum_loads<Vec3, Couples, Ledger>(out, r, p, lo, hi);
+void sum_pair_contacts_plain(const ForceBlocks& out, const PairResults& r, const Particles& p, long lo, long hi, ParticleWork* block_work) {
+  sum_loads<Vec3, Couples, Ledger>(out, r, p, lo, hi, block_work);
 }
 #ifdef DEM_SIMD_LOOPS
 template <bool Couples, bool Ledger>
-DEM_AVX2 void sum_pair_contacts_avx2(const ForceBlocks& out, const PairResults& r, const Particles& p, long lo, long hi) {
-  sum_loads<lanes::Lanes4, Couples, Ledger>(out, r, p, lo, hi);
+DEM_AVX2 void sum_pair_contacts_avx2(const ForceBlocks& out, const PairResults& r, const Particles& p, long lo, long hi, ParticleWork* block_work) {
+  sum_loads<lanes::Lanes4, Couples, Ledger>(out, r, p, lo, hi, block_work);
 }
 #endif
 template <bool Couples, bool Ledger>
-void sum_pair_contacts(const ForceBlocks& out, const PairResults& r, const Particles& p, long lo, long hi) {
+void sum_pair_contacts(const ForceBlocks& out, const PairResults& r, const Particles& p, long lo, long hi, ParticleWork* block_work) {
 #ifdef DEM_SIMD_LOOPS
-  if (out.simd) return sum_pair_contacts_avx2<Couples, Ledger>(out, r, p, lo, hi);
+  if (out.simd) return sum_pair_contacts_avx2<Couples, Ledger>(out, r, p, lo, hi, block_work);
 #endif
-  sum_pair_contacts_plain<Couples, Ledger>(out, r, p, lo, hi);
+  sum_pair_contacts_plain<Couples, Ledger>(out, r, p, lo, hi, block_work);
 }
 
 // The net loads of block b's particles (ForceBlocks): each one's weight and pair contacts, then its
@@ -347,8 +355,17 @@ double finish_block(const ForceLoopInput& in, const ContactList& pc, ContactList
   const Particles& p = in.particles;
   const long lo = b * out.block, hi = std::min(static_cast<long>(p.size()), lo + out.block);
   const PairResults r{pc.sum.data(), pc.rolling.data(), in.work};
-  if (out.work) sum_pair_contacts<Model::has_rolling, true>(out, r, p, lo, hi);
-  else sum_pair_contacts<Model::has_rolling, false>(out, r, p, lo, hi);
+  // The contacts' sums for the ledger: the block's own where its particles' work is taken here,
+  // else the per-slot array the ledger's pass reads.
+  ParticleWork* block_work = nullptr;
+  if (out.work && out.particle_work) {
+    scratch.block.work.resize(out.block);
+    block_work = scratch.block.work.data();
+  } else if (out.work) {
+    block_work = out.work + lo;
+  }
+  if (block_work) sum_pair_contacts<Model::has_rolling, true>(out, r, p, lo, hi, block_work);
+  else sum_pair_contacts<Model::has_rolling, false>(out, r, p, lo, hi, nullptr);
   // Its wall contacts: found run by run, their law on them all, their loads added in that order.
   scratch.walls.found.clear();
   for (int q = in.wall_block_first[b]; q < in.wall_block_first[b + 1]; ++q)
@@ -356,11 +373,25 @@ double finish_block(const ForceLoopInput& in, const ContactList& pc, ContactList
   WallContactsFound& found = scratch.walls.found;
   wall_law<Model>(with_broken(PairLawArrays(p, wc, true, in.wall_work), scratch.broken_walls), found, in.dt, out.simd, in.any_bonds);
   double power = 0;
-  const double worst = add_wall_loads<Model>(in, wc, found, out, out.wall_power ? &power : nullptr, out.step_work ? &work : nullptr);
+  const double worst =
+      add_wall_loads<Model>(in, wc, found, out, out.wall_power ? &power : nullptr, out.step_work ? &work : nullptr, block_work, lo);
   if (out.wall_power) out.wall_power[b] = power;
   if (out.body.fluid) out.body.add_fluid(p, lo, hi, out.force.data(), out.simd);
+  // The state before the motion, for the particles' work: the ledger's arrays where it reads them
+  // after the step (move_particles keeps it there), else the block's own copy.
+  BeforeMotion before{};
+  if (out.particle_work) {
+    const MotionArrays& a = out.motion->arrays;
+    if (a.before_x) {
+      before = {a.before_x + lo, a.before_v + lo, a.before_w + lo, block_work};
+    } else {
+      std::vector<Vec3>&x = scratch.block.x, &v = scratch.block.v, &w = scratch.block.w;
+      x.assign(p.x.begin() + lo, p.x.begin() + hi), v.assign(p.v.begin() + lo, p.v.begin() + hi), w.assign(p.w.begin() + lo, p.w.begin() + hi);
+      before = {x.data(), v.data(), w.data(), block_work};
+    }
+  }
   if (out.motion) not_finite = std::max(not_finite, move_particles(out.motion->arrays, out.motion->constants, lo, hi));
-  if (out.particle_work) add_particle_work(p, *out.particle_work, lo, hi, work);
+  if (out.particle_work) add_particle_work(p, *out.particle_work, before, lo, hi, work);
   return worst;
 }
 

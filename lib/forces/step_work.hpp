@@ -44,12 +44,9 @@ struct StepWork {
   }
 };
 
-// What add_particle_work reads besides the particles (their state after the motion).
+// What add_particle_work reads besides the particles (their state after the motion) and their
+// BeforeMotion.
 struct StepWorkInput {
-  const Vec3* before_x;  // x^n
-  const Vec3* before_v;  // v^{n-1/2}
-  const Vec3* before_w;  // w^{n-1/2}
-  const ParticleWork* work;
   const LoadSum* force;   // the net loads the motion took (a prescribed particle's: what holds it)
   const LoadSum* torque;
   const FluidField* fluid;  // the stage's fluid, or null
@@ -60,10 +57,20 @@ struct StepWorkInput {
   bool any_fixed;  // Particles::fixed is to be read
 };
 
+// The state before the motion and the contacts' sums of particles [lo, hi), each array's first
+// entry slot lo's: the ledger's arrays from lo on, or a block's own copies where nothing reads them
+// after the step (the force loop's ThreadScratch: they stay in cache).
+struct BeforeMotion {
+  const Vec3* x;  // x^n
+  const Vec3* v;  // v^{n-1/2}
+  const Vec3* w;  // w^{n-1/2}
+  const ParticleWork* work;
+};
+
 // Adds to `sums` the work on particles [lo, hi) of their contacts (ParticleWork), the fluid, what
 // holds the prescribed ones and the global damping, each with the particle's mean velocities
 // v̄ = (v^{n-1/2} + v^{n+1/2})/2, w̄ likewise (docs/physics.md eq. P33-P35, P37, P40-P41).
-void add_particle_work(const Particles& p, const StepWorkInput& in, long lo, long hi, StepWork& sums);
+void add_particle_work(const Particles& p, const StepWorkInput& in, const BeforeMotion& before, long lo, long hi, StepWork& sums);
 
 // A wall contact's part (what its law left: `w`, and its sum `s`, the force f on particle i and
 // n x f_t; its rolling couple M, zero without one; the wall's material at the contact point moving

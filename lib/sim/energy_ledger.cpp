@@ -133,7 +133,7 @@ struct StepSums {
 
 StepWorkInput Simulation::ledger_work_input(const FluidField* fluid, bool any_fixed) const {
   const bool rolling = !force_variant_ || force_variant_->rolling != RollingLaw::None;  // else no couples
-  return {ledger_x_.data(), ledger_v_.data(), ledger_w_.data(), ledger_particle_work_.data(), block_force_.data(), block_torque_.data(),
+  return {block_force_.data(), block_torque_.data(),
           fluid, params.gravity, params.alpha_r, params.alpha_theta, dt, rolling, any_fixed};
 }
 
@@ -207,7 +207,10 @@ void Simulation::account_energy(bool any_fixed) {
 #pragma omp for schedule(static) nowait
       for (long k = 0; k < measure_count; ++k) measure_particle(k, mine);
 #pragma omp for schedule(static) nowait
-      for (long lo = 0; lo < particle_work_count; lo += 1024) add_particle_work(p, work_input, lo, std::min(particle_work_count, lo + 1024), mine.work);
+      for (long lo = 0; lo < particle_work_count; lo += 1024) {
+        const BeforeMotion before{x0 + lo, v0 + lo, w0 + lo, ledger_particle_work_.data() + lo};
+        add_particle_work(p, work_input, before, lo, std::min(particle_work_count, lo + 1024), mine.work);
+      }
 #pragma omp for schedule(static) nowait
       for (long k = 0; k < pair_count; ++k) account_pair(normal, k, broke_now(broken_pairs_, k), mine.c);
 #pragma omp for schedule(static) nowait
