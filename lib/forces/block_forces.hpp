@@ -282,7 +282,7 @@ struct PairResults {
 // in the plain loops, one four-lane register with AVX2; the same operations, so the same bits.
 // With couples (rolling resistance): + M where it is i, - M where it is j, added to the torque last
 // (eq. R1). With the energy log (Ledger): the same runs of its contacts' ContactWork into
-// ForceBlocks::work, mere candidates' zeros included (pass 1 keeps them zero: no branch per
+// block_work (from slot lo on), mere candidates' zeros included (pass 1 keeps them zero: no branch per
 // candidate, whose outcome the predictor could not guess).
 template <class V, bool Couples, bool Ledger>
 [[gnu::always_inline]] inline void sum_loads(const ForceBlocks& out, const PairResults& r, const Particles& p, long lo, long hi,

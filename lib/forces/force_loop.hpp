@@ -76,7 +76,9 @@ struct ForceBlocks {
   bool simd;                        // simd_loops_on()
   std::vector<LoadSum>& force;      // per slot: the net force [N] (written, not added to)
   std::vector<LoadSum>& torque;     // per slot: the net torque [N m]
-  ParticleWork* work = nullptr;     // per slot, written while the energy log is on (ForceLoopInput::work)
+  ParticleWork* work = nullptr;     // per slot, while the energy log is on (ForceLoopInput::work); written
+                                    // only where the particles' work is not taken in the loop
+                                    // (particle_work null): else each block keeps its own
   double* wall_power = nullptr;     // per block, where asked: Σ f · v_wall over its particles' wall
                                     // contacts (the walls' power, for the energy check) [W]
   // Within a step (Simulation::advance): each block's particles then move (integrate/motion.hpp)

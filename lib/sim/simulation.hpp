@@ -239,15 +239,16 @@ class Simulation {
   // recomputed or the storage is sorted, and rebuilt from them before the force loop.
   FluidGrains fluid_grains_;
   double fluid_grains_for_[2] = {0, 0};
-  // While ledger.on: the state before the motion (the bonds that broke this step, which release
-  // their energy, are broken_pairs_ and broken_walls_).
+  // While ledger.on: the state before the motion, kept on the steps whose pass after the motion
+  // reads it (measuring, bonds, the motion apart: advance) (the bonds that broke this step, which
+  // release their energy, are broken_pairs_ and broken_walls_).
   std::vector<Vec3> ledger_x_, ledger_v_, ledger_w_;
   std::vector<std::uint8_t> ledger_fibre_broken_;  // the fibre segments broken before the force loop
   std::vector<ContactWork> ledger_contact_work_;  // while ledger.on: what each pair contact's law left, per candidate
   bool ledger_work_zeros_ = false;  // every candidate of ledger_contact_work_ that is no contact holds zeros
                                     // (made and kept so by pass 1 while the log is on; lost at a rebuild)
   std::vector<ContactWork> ledger_wall_work_;     // while ledger.on: the same, per wall candidate
-  std::vector<ParticleWork> ledger_particle_work_;  // while ledger.on: the force loop's, per slot
+  std::vector<ParticleWork> ledger_particle_work_;  // while ledger.on, the motion apart: the force loop's, per slot
   StepWork ledger_work_;  // while ledger.on: the step's work the force loop added (ForceBlocks::step_work)
   bool ledger_particles_done_ = false;  // whether that includes the particles' (the motion ran in the loop)
   int step_threads_ = 0;                // step_threads()
