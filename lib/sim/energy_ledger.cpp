@@ -145,7 +145,7 @@ void Simulation::account_energy(bool any_fixed) {
   // What the particles and contacts hold is measured only where asked (and at the reference); the
   // work of the step is added every step: by the force loop (its wall contacts', and its
   // particles' where they moved in it: ledger_particles_done_), else by this pass.
-  const bool measure = ledger.measure_now || !ledger.have_reference;
+  const bool measure = ledger.measures();
   std::optional<FluidField> fluid;
   if (params.fluid.on()) fluid.emplace(params.fluid);
   const StepWorkInput work_input = ledger_work_input(fluid ? &*fluid : nullptr, any_fixed);

@@ -61,6 +61,8 @@ struct EnergyLedger {
   // of the pass. The first step accounted always measures (the reference).
   bool measure_now = true;
   bool have_reference = false;
+  // Whether the next step accounted measures what is held: where asked, and at the reference.
+  bool measures() const { return measure_now || !have_reference; }
   EnergyState reference;   // at the end of the first step accounted
   EnergyTotals totals;
   EnergyState now;         // at the last step that measured it

@@ -59,7 +59,7 @@ void Simulation::advance() {
   if (fibres.empty() && !(audit && energy_check_measures_now()) && !motion_apart_for_tests) {
     // The ledger's pass after the step reads the state before the motion only where it measures
     // or a bond may break; otherwise each block keeps its own while it moves (block_forces.hpp).
-    const bool ledger_reads_state = ledger.on && (ledger.measure_now || !ledger.have_reference || has_bonds_);
+    const bool ledger_reads_state = ledger.on && (ledger.measures() || has_bonds_);
     const MotionStep motion = motion_step(any_fixed, ledger_reads_state);
     compute_loads(&motion);
     if (audit) audit_energy(any_prescribed);  // the work of the step only: the walls' from the force loop
