@@ -11,6 +11,9 @@
 #   bench/hertz_models.hpp, inputs bench/peers/in.SCENE_hertz.CODE -var rolling 0|1), written to
 #   bench/results/peers_hertz_runs.csv and peers_hertz.md instead, e.g.
 #   bash bench/run_peer_bench.sh 3 "settle:10000:20000 chute:32000:2000" "hertz hertz-rolling"
+# One process or thread runs pinned to CPU $PIN_CPU (default 0) for every code: on a VM whose
+#   cores differ (bench/results/peers_hertz.md, "The machine's two cores"), a run left to the scheduler
+#   lands on either and its time says which as much as which code it was.
 # Needs: apt-get install lammps liggghts openmpi-bin time (done here when run as root).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -18,6 +21,7 @@ root=$PWD
 reps=${1:-3}
 scenes=${2:-"settle:10000:20000 settle:100000:2500 chute:32000:6000"}
 models=${3:-linear}
+pin=${PIN_CPU:-0}
 out=peers; [ "$models" = linear ] || out=peers_hertz
 make -f Makefile.cases build > /dev/null
 cmake --build build --target settle_bench chute_bench -- --no-print-directory > /dev/null
@@ -39,15 +43,16 @@ today=$(date -u +%Y-%m-%d)
 # One run: prints "loop_seconds peak_rss_kb" (peak RSS of the largest process).
 run_one() {  # code procs scene N steps model
   local code=$1 np=$2 scene=$3 n=$4 steps=$5 model=$6 log="$work/log" t="$work/time"
+  local on=(); [ "$np" = 1 ] && on=(taskset -c "$pin")  # one process: every code on the same core
   case $code in
     dem) local bench=("$root/build/bench/settle_bench" run "$n"); [ "$scene" = chute ] && bench=("$root/build/bench/chute_bench" run)
-         OMP_NUM_THREADS=$np /usr/bin/time -v -o "$t" "${bench[@]}" "$steps" "$np" "$model" > "$log"
+         OMP_NUM_THREADS=$np /usr/bin/time -v -o "$t" "${on[@]}" "${bench[@]}" "$steps" "$np" "$model" > "$log"
          awk '{for (i = 1; i < NF; i++) if ($i == "loop_s") print $(i + 1)}' "$log" | tr '\n' ' ' ;;
     lammps|liggghts)
          local exe=lmp; [ "$code" = liggghts ] && exe=liggghts
          local launch=(); [ "$np" -gt 1 ] && launch=(mpirun -np "$np" --bind-to none)
          local input=("in.$scene.$code"); [ "$model" = linear ] || input=("in.${scene}_hertz.$code" -var rolling "$([ "$model" = hertz-rolling ] && echo 1 || echo 0)")
-         (cd "$work" && /usr/bin/time -v -o "$t" "${launch[@]}" "$exe" -in "${input[@]}" -var N "$n" -var nsteps "$steps" -log none > "$log" 2>&1)
+         (cd "$work" && /usr/bin/time -v -o "$t" "${on[@]}" "${launch[@]}" "$exe" -in "${input[@]}" -var N "$n" -var nsteps "$steps" -log none > "$log" 2>&1)
          awk '/^Loop time of/ {print $4}' "$log" | tr '\n' ' ' ;;
   esac
   awk -F: '/Maximum resident set size/ {gsub(/ /, "", $2); print $2}' "$t"

@@ -11,6 +11,10 @@ import subprocess
 import sys
 
 
+# run_peer_bench.sh pins one-process runs since 2026-12-06 (peers_hertz.md, "The machine's two cores").
+PINNED = ("One process: every code pinned to the same core (`taskset -c $PIN_CPU`, default 0) in runs "
+          "since 2026-12-06, left to the scheduler before.")
+
 def sh(cmd):
     try:
         return subprocess.run(cmd, shell=True, capture_output=True, text=True).stdout.strip()
@@ -38,6 +42,7 @@ def main(path):
     print(f"Written {datetime.date.today()} on {os.cpu_count()} cores ({cpu}); each scene's runs in one session, interleaved")
     print("(the date column); ratios compare codes within a scene's session only;")
     print(f"{dem} (g++ -O3 since 2026-11-24, -O2 before; OpenMP threads); Debian {versions.rstrip('; ')} (MPI processes).")
+    print(PINNED)
     print("Reproduce: `bash bench/run_peer_bench.sh` (every run in `bench/results/peers_runs.csv`).")
     print("Hertz-Mindlin and rolling resistance in the same scenes: [peers_hertz.md](peers_hertz.md).\n")
     print("Settle (`bench/settle_scene.hpp`, inputs `bench/peers/in.settle.*`): spheres of radius 1 mm on a loose")
@@ -90,6 +95,7 @@ def hertz(rows):
     print("# Our code beside LAMMPS and LIGGGHTS: Hertz-Mindlin and rolling resistance\n")
     print(f"Written {datetime.date.today()} on {os.cpu_count()} cores ({cpu}); each scene's runs in one session, interleaved;")
     print(f"{dem} (OpenMP threads); Debian {versions.rstrip('; ')} (MPI processes).")
+    print(PINNED)
     print("Reproduce: `bash bench/run_peer_bench.sh 3 \"settle:10000:20000 chute:32000:2000\" \"hertz hertz-rolling\"`")
     print("(every run in `bench/results/peers_hertz_runs.csv`). The models, the material values and how each")
     print("code is told the same physics: the notes below the tables (and `bench/hertz_models.hpp`,")
