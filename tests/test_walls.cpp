@@ -77,5 +77,50 @@ TEST(WallContact, EdgeAndVertexForceAlongTheLineToTheCentre) {
   }
 }
 
+// The walls' loads (a servo reads them every step) come from copies the force loop keeps in key
+// order; they must equal the candidates' own sums in key order (wall_loads(true), which reads the
+// candidates for their torques) at every step: while contacts begin and end, the storage re-sorted
+// under them. Exact: the same additions in the same order.
+TEST(WallLoads, TheForceLoopsCopiesEqualTheCandidatesAtEveryStep) {
+  Material m;
+  m.name = "m";
+  m.kn = 1e4, m.kt = 2e3;
+  m.restitution = m.restitution_t = 0.9;  // bouncing: wall contacts end and begin again
+  Simulation sim;
+  sim.materials = MaterialTable({m}, {});
+  const Vec3 hi(0.012, 0.012, 0.012);
+  for (int axis = 0; axis < 3; ++axis)
+    for (bool side : {false, true}) sim.walls.push_back(Wall{"w", 0, box_face(Vec3::Zero(), hi, axis, side), {}});
+  Index id = 0;
+  for (int x = 0; x < 3; ++x)
+    for (int y = 0; y < 3; ++y)
+      for (int z = 0; z < 3; ++z) {
+        sim.particles.add(id, Vec3(0.002 + 0.004 * x, 0.002 + 0.004 * y, 0.002 + 0.004 * z), 0.001, 2500, 0);
+        sim.particles.v.back() = Vec3(0.3 * (x - 1) + 0.05 * z, 0.2 * (y - 1) - 0.05 * x, -0.4 + 0.1 * y);
+        ++id;
+      }
+  sim.params.sort_every = 50, sim.params.sort_min_particles = 0;  // slots apart from key order
+  sim.dt = 1e-5;
+  long began = 0, ended = 0;
+  int before = 0;
+  for (int step = 0; step < 3000; ++step) {
+    sim.advance();
+    const std::vector<WallLoad> copied = sim.wall_loads(false), direct = sim.wall_loads(true);
+    ASSERT_EQ(copied.size(), direct.size());
+    int now = 0;
+    for (std::size_t w = 0; w < copied.size(); ++w) {
+      ASSERT_EQ(copied[w].contacts, direct[w].contacts) << "step " << step << ", wall " << w;
+      ASSERT_TRUE(copied[w].force.x() == direct[w].force.x() && copied[w].force.y() == direct[w].force.y() &&
+                  copied[w].force.z() == direct[w].force.z())
+          << "step " << step << ", wall " << w << ": " << copied[w].force.transpose() << " vs " << direct[w].force.transpose();
+      now += copied[w].contacts;
+    }
+    began += now > before, ended += now < before;
+    before = now;
+  }
+  EXPECT_GT(began, 5) << "wall contacts must begin during the run for the test to mean anything";
+  EXPECT_GT(ended, 5) << "and end";
+}
+
 }  // namespace
 }  // namespace dem

@@ -189,6 +189,7 @@ void find_wall_contacts(const ForceLoopInput& in, ContactList& wc, long r, Threa
   for (int e = 0; e < n; ++e) {
     const int k = first + e;
     if (!take[e]) {
+      if (in.wall_forces) in.wall_forces[in.wall_rank[k]].active = 0;
       wc.active[k] = 0;
       wc.spring[k] = Vec3::Zero();
       wc.rolling[k] = Vec3::Zero();
@@ -228,6 +229,10 @@ double add_wall_loads(const ForceLoopInput& in, ContactList& wc, const WallConta
     const ContactSum& s = wc.sum[k];
     const Vec3 couple = Model::has_rolling ? wc.rolling[k] : Vec3::Zero();
     wc.active[k] = 1;
+    if (in.wall_forces) {
+      WallForce& w = in.wall_forces[in.wall_rank[k]];
+      w.force = s.force, w.active = 1;
+    }
     out.force[i].v += s.force;  // eq. 2.31
     out.torque[i].v += p.radius[i] * s.torque_per_radius;  // eq. 2.33
     if constexpr (Model::has_rolling) out.torque[i].v += couple;  // eq. R1

@@ -22,6 +22,14 @@ namespace dem {
 
 class Simulation;
 
+// A wall candidate as the walls' loads read it (Simulation::wall_loads), kept in key order: its
+// wall, and this step whether it is a contact and its force on the particle.
+struct WallForce {
+  Vec3 force = Vec3::Zero();  // on the particle [N]
+  std::int32_t wall = 0;      // the element (key_j)
+  std::uint8_t active = 0;
+};
+
 // What the force loop reads.
 struct ForceLoopInput {
   const Particles& particles;
@@ -41,6 +49,11 @@ struct ForceLoopInput {
   ContactWork* wall_work = nullptr;  // per wall candidate: the same
   bool work_unset = false;           // `work` holds anything after a rebuild: pass 1 zeroes every candidate's
                                      // that is no contact (in the parallel loop, not in a serial pass before)
+  // Where given: per wall candidate its place in key order, and per place its WallForce, written
+  // by the thread that takes the contact (in its cache), so that the walls' loads, which a servo
+  // sums every step in key order, read them in order and not from the other core's cache.
+  const int* wall_rank = nullptr;
+  WallForce* wall_forces = nullptr;
 };
 
 // Each particle's net load, summed in the force loop in one order that depends on neither the

@@ -88,10 +88,11 @@ void Simulation::compute_loads(const MotionStep* motion) {
     ledger_wall_work_.resize(walls_.size());
     ledger_particle_work_.resize(particles.size());
   }
+  if (wall_rank_.size() != walls_.size()) rank_wall_candidates();
   const ForceLoopInput in{particles, materials, walls, wall_geometry_, wall_runs_, wall_run_order_, wall_block_first_, periodic,
                           any_fixed, has_bonds_, dt, params.keep_pair_results,
                           ledger.on ? ledger_contact_work_.data() : nullptr, ledger.on ? ledger_wall_work_.data() : nullptr,
-                          ledger.on && !ledger_work_zeros_};
+                          ledger.on && !ledger_work_zeros_, wall_rank_.data(), wall_forces_.data()};
   ledger_work_zeros_ = ledger.on;  // pass 1 zeroes it now, and keeps it so while the log stays on
   if (indexed_block_ != params.load_block) index_contacts_per_particle();
   const bool sum_wall_power = walls_move_ && energy_check_on();  // the energy check's (audit_energy)
@@ -125,6 +126,7 @@ void Simulation::compute_loads(const MotionStep* motion) {
   }
   pair_results_kept_ = params.keep_pair_results;
   contacts_modified();
+  wall_forces_current_ = true;  // every candidate's written by the loop just run
   if (worst_overlap > params.max_overlap) report_overlap(worst_overlap);
   if (loads.not_finite >= 0) report_not_finite(loads.not_finite);
 }
@@ -170,7 +172,18 @@ void Simulation::release_contact_views() const {
   pair_view_current_ = wall_view_current_ = false;
 }
 
-void Simulation::contacts_modified() { pair_view_current_ = wall_view_current_ = false; }
+void Simulation::contacts_modified() { pair_view_current_ = wall_view_current_ = wall_forces_current_ = false; }
+
+void Simulation::rank_wall_candidates() {
+  const std::size_t n = walls_.size();
+  wall_rank_.resize(n);
+  wall_forces_.assign(n, WallForce{});
+  for (std::size_t r = 0; r < n; ++r) {
+    const int k = key_rank_to_position(wall_by_key_, r);
+    wall_rank_[k] = static_cast<int>(r);
+    wall_forces_[r].wall = static_cast<std::int32_t>(walls_.key_j[k]);
+  }
+}
 
 void Simulation::set_contacts(ContactList pairs, ContactList walls) {
   pairs_ = std::move(pairs);
@@ -356,6 +369,7 @@ void Simulation::find_contacts() {
   }
   place_walls_by_storage(neighbours_.wall_pairs(), particles.size(), place_count_, wall_place_);
   carry_history(walls_, wall_by_key_, neighbours_.wall_pairs(), wall_place_, carry_from_);
+  rank_wall_candidates();
   neighbours_.release_found();  // carried over: free the memory until the next rebuild
   index_contacts_per_particle();
   if (has_bonds_) count_bonds();  // a bonded candidate the search no longer lists is gone with its bond
@@ -615,6 +629,15 @@ double Simulation::kinetic_energy() const {
 // which need the particle's slot, are for after a step.
 std::vector<WallLoad> Simulation::wall_loads(bool torques) const {
   std::vector<WallLoad> load(walls.size());
+  if (wall_forces_current_ && !torques) {  // the force loop's copies, in key order: the same sums
+    for (const WallForce& w : wall_forces_) {
+      if (!w.active) continue;
+      WallLoad& l = load[w.wall];
+      l.force += -w.force;
+      ++l.contacts;
+    }
+    return load;
+  }
   for (std::size_t r = 0; r < walls_.size(); ++r) {  // in key order: the same bits for any storage order
     const int k = key_rank_to_position(wall_by_key_, r);
     if (!walls_.active[k]) continue;

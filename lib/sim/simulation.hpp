@@ -210,6 +210,12 @@ class Simulation {
   mutable bool pair_by_key_current_ = true;
   KeyOrder pair_place_;   // working storage of place_by_storage and carry_history
   KeyOrder wall_by_key_;  // where walls_ holds its entries in key order (empty: in key order)
+  // Per wall candidate its place in key order, and per place what wall_loads() reads (ForceLoopInput):
+  // current from the force loop until the contacts are modified.
+  std::vector<int> wall_rank_;
+  std::vector<WallForce> wall_forces_;
+  bool wall_forces_current_ = false;
+  void rank_wall_candidates();
   KeyOrder wall_place_;   // working storage of place_walls_by_storage and carry_history
   std::vector<int> place_count_;
   std::vector<int> carry_from_;  // working storage of carry_history

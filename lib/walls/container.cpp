@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <vector>
 
 #include "state/particles.hpp"
 #include "walls/wall.hpp"
@@ -151,18 +152,31 @@ Polygon ConvexPolytope::face_in(const HalfSpace& h) const {
 
 Container::Container(const std::vector<Wall>& walls, double t, const Particles& p, const Vec3& gravity)
     : walls_(walls), t_(t), particles_(p), bounds_(walls.size(), -1), planes_(walls.size()), have_plane_(walls.size(), 0) {
-  for (const Vec3& x : p.x) {
-    centroid_ += x;
-    lo_ = lo_.cwiseMin(x);
-    hi_ = hi_.cwiseMax(x);
-  }
-  if (p.size() > 0) centroid_ /= static_cast<double>(p.size());
-  if (gravity.norm() > 0 && p.size() > 0) {
-    // Keep {x : up·x <= top}, up = -g/|g|: as a half-space, normal g/|g| and offset -top.
-    const Vec3 down = gravity.normalized();
+  // One pass over the centres, in parallel (a servo builds a container every step): chunks of a
+  // fixed size, their sums added in chunk order, so the centroid has the same bits for any thread
+  // count (below one chunk, those of the plain sum); the box and the top are exact in any order.
+  const bool up = gravity.norm() > 0;
+  const Vec3 down = up ? Vec3(gravity.normalized()) : Vec3::Zero();
+  constexpr long kChunk = 4096;
+  const long n = static_cast<long>(p.size()), chunks = (n + kChunk - 1) / kChunk;
+  struct Part {
+    Vec3 sum = Vec3::Zero(), lo = Vec3::Constant(INFINITY), hi = Vec3::Constant(-INFINITY);
     double top = -INFINITY;
-    for (std::size_t i = 0; i < p.size(); ++i) top = std::max(top, -down.dot(p.x[i]) + p.radius[i]);
-    top_ = HalfSpace{down, -top};
+  };
+  std::vector<Part> parts(chunks);
+#pragma omp parallel for schedule(static) if (chunks > 1)
+  for (long c = 0; c < chunks; ++c) {
+    Part& q = parts[c];
+    for (long i = c * kChunk; i < std::min(n, (c + 1) * kChunk); ++i) {
+      q.sum += p.x[i], q.lo = q.lo.cwiseMin(p.x[i]), q.hi = q.hi.cwiseMax(p.x[i]);
+      if (up) q.top = std::max(q.top, -down.dot(p.x[i]) + p.radius[i]);
+    }
+  }
+  double top = -INFINITY;
+  for (const Part& q : parts) centroid_ += q.sum, lo_ = lo_.cwiseMin(q.lo), hi_ = hi_.cwiseMax(q.hi), top = std::max(top, q.top);
+  if (n > 0) centroid_ /= static_cast<double>(n);
+  if (up && n > 0) {
+    top_ = HalfSpace{down, -top};  // keep {x : up·x <= top}, up = -g/|g|: normal g/|g|, offset -top
     has_top_ = true;
   }
 }
