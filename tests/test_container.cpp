@@ -3,6 +3,8 @@
 // poke through each other) against the exact volume and face areas.
 #include <gtest/gtest.h>
 
+#include <omp.h>
+
 #include <cmath>
 #include <random>
 
@@ -84,10 +86,10 @@ std::vector<Wall> box_walls(const Vec3& lo, const Vec3& hi) {
 }
 
 // Particles spread inside [lo, hi] (their centres only matter, and the top sphere under gravity).
-Particles spheres_in(const Vec3& lo, const Vec3& hi, double a, std::mt19937_64& rng) {
+Particles spheres_in(const Vec3& lo, const Vec3& hi, double a, std::mt19937_64& rng, int count = 50) {
   Particles p;
   std::uniform_real_distribution<double> u(0, 1);
-  for (int k = 0; k < 50; ++k) {
+  for (int k = 0; k < count; ++k) {
     Vec3 x;
     for (int c = 0; c < 3; ++c) x[c] = lo[c] + a + (hi[c] - lo[c] - 2 * a) * u(rng);
     p.add(k, x, a, 1000, 0);
@@ -198,6 +200,38 @@ TEST(Container, PlaneAcrossTheCentresBoxButBehindEveryCentre) {
   p.add(3, Vec3(0.0145, 0.0145, 0.005), 1e-3, 1000, 0);  // x + y = 0.029: beyond the corner wall
   Container beyond(walls, 0, p, Vec3::Zero());
   EXPECT_NEAR(beyond.wall_area(1), 0.02 * 0.01, 1e-17) << "box.xmax: the corner wall has a centre beyond it";
+}
+
+// A sample as large as users bring (10,000 centres: the container's pass over them runs in chunks
+// of 4,096, in parallel): the same answers as above when what decides them lies in the last chunk
+// (the top sphere; the one centre beyond an oblique wall), and the same bits on one thread and two.
+TEST(Container, TenThousandCentresGiveTheSameAnswersOnAnyThreadCount) {
+  const int threads_before = omp_get_max_threads();
+  const Vec3 lo(0, 0, 0), hi(0.02, 0.02, 0.1);
+  std::vector<Wall> walls = box_walls(lo, hi);
+  walls.push_back(Wall{"corner", 0, {Vec3(0.005, 0.02, 0), Vec3(0.02, 0.005, 0), Vec3(0.02, 0.005, 0.1), Vec3(0.005, 0.02, 0.1)}, {}});
+  std::mt19937_64 rng(7);
+  Particles p = spheres_in(lo, Vec3(0.0125, 0.0125, 0.03), 1e-3, rng, 10000);  // every centre has x + y < 0.0235
+  p.add(10000, Vec3(0.005, 0.005, 0.035), 1e-3, 1000, 0);                    // the top sphere, top at z = 0.036
+  ASSERT_GT(p.size(), 2u * 4096) << "the centres must fill more than two chunks";
+  const double top = 0.036;
+  double volume[2], area[2];
+  for (int threads : {1, 2}) {
+    omp_set_num_threads(threads);
+    Container c(walls, 0, p, Vec3(0, 0, -9.81));
+    volume[threads - 1] = c.volume(), area[threads - 1] = c.wall_area(1);
+    // The box cut at the top and by the corner wall x + y <= 0.025: 0.02^2 less the corner's
+    // triangle of legs 0.015.
+    EXPECT_NEAR(c.volume(), (0.02 * 0.02 - 0.5 * 0.015 * 0.015) * top, 1e-18) << threads << " threads";
+    EXPECT_NEAR(c.wall_area(1), 0.005 * top, 1e-18) << "box.xmax, cut by the corner wall and the top";
+  }
+  EXPECT_EQ(volume[0], volume[1]);
+  EXPECT_EQ(area[0], area[1]);
+  p.add(10001, Vec3(0.0145, 0.0145, 0.005), 1e-3, 1000, 0);  // beyond the corner wall, in the last chunk
+  omp_set_num_threads(2);
+  Container beyond(walls, 0, p, Vec3(0, 0, -9.81));
+  EXPECT_NEAR(beyond.wall_area(1), 0.02 * top, 1e-18) << "box.xmax: the corner wall has a centre beyond it";
+  omp_set_num_threads(threads_before);
 }
 
 }  // namespace

@@ -189,7 +189,7 @@ void find_wall_contacts(const ForceLoopInput& in, ContactList& wc, long r, Threa
   for (int e = 0; e < n; ++e) {
     const int k = first + e;
     if (!take[e]) {
-      if (in.wall_forces) in.wall_forces[in.wall_rank[k]].active = 0;
+      if (in.wall_forces && wc.active[k]) in.wall_forces[in.wall_rank[k]].active = 0;  // else 0 already
       wc.active[k] = 0;
       wc.spring[k] = Vec3::Zero();
       wc.rolling[k] = Vec3::Zero();
