@@ -155,6 +155,38 @@ struct ThreadScratch {
   } block;
 };
 
+// Wall candidate k of particle i after the selection: where `take`, a contact, appended to `found`
+// with its kinematics (`to_wall`: closest point - centre); else it loses its history and sum.
+template <class Model>
+[[gnu::always_inline]] inline void take_wall_candidate(const ForceLoopInput& in, ContactList& wc, int k, int i, bool take, const Vec3& to_wall,
+                                                       WallContactsFound& found) {
+  const Particles& p = in.particles;
+  if (!take) {
+    if (!wc.active[k]) return;  // no contact at the last step either: its history and sum are zeros already
+    if (in.wall_forces) in.wall_forces[in.wall_rank[k]].active = 0;
+    wc.active[k] = 0;
+    wc.spring[k] = Vec3::Zero();
+    wc.rolling[k] = Vec3::Zero();
+    wc.dashpot[k] = 0;
+    wc.sum[k] = ContactSum();
+    return;
+  }
+  const WallGeometry& g = in.geometry[wc.slot_j[k]];
+  const double dist = to_wall.norm();
+  ContactKinematics c;
+  // A centre exactly on the wall has no direction to the contact point: use the plane normal.
+  c.n = dist > 0 ? Vec3(to_wall * (1.0 / dist)) : g.normal;  // one division, as the pair contacts
+  c.overlap = p.radius[i] - dist;  // eq. 2.17
+  // eq. 2.18: the velocity of the wall's material at the contact point enters.
+  const Vec3 v_wall = g.velocity_of(p.x[i] + to_wall);
+  c.v_rel = v_wall - p.v[i];
+  c.w_arm = p.radius[i] * p.w[i];
+  c.m_eff = p.mass[i];
+  c.r_eff = p.radius[i];  // a wall: infinite radius, eq. H3
+  c.w_rel = Model::has_rolling ? Vec3(p.w[i] - g.spin) : Vec3::Zero();  // unread without rolling, but copied
+  found.add(k, in.materials.pair(p.material[i], in.walls[wc.slot_j[k]].material), c, v_wall);
+}
+
 // The wall candidates of run r (one particle's, in order): which are contacts this step, those
 // appended to `found` with their kinematics; the others lose their history and sum.
 template <class Model>
@@ -163,6 +195,13 @@ void find_wall_contacts(const ForceLoopInput& in, ContactList& wc, long r, Threa
   const int first = in.wall_runs[r], n = in.wall_runs[r + 1] - first;
   const int i = wc.slot_i[first];
   auto& [to_wall, touching, take, order, found] = scratch.walls;
+  if (n == 1) {  // one element near: a touch is a contact (none to weigh it against, no spring to take over)
+    Vec3 to_this;
+    const bool bonded = wc.bonded[first];
+    const bool touches = wall_touches(p, in.geometry[wc.slot_j[first]], i, p.radius[i] * p.radius[i], wc.active[first], bonded, to_this);
+    take_wall_candidate<Model>(in, wc, first, i, touches || bonded, to_this, found);
+    return;
+  }
   if (static_cast<int>(to_wall.size()) < n) to_wall.resize(n), touching.resize(n), take.resize(n), order.resize(n);
   counted_wall_touches(p, in.geometry, wc, first, n, to_wall.data(), touching.data(), take.data(), order.data());
   for (int e = 0; e < n; ++e) take[e] = take[e] || wc.bonded[first + e];  // a bond holds regardless
@@ -186,32 +225,7 @@ void find_wall_contacts(const ForceLoopInput& in, ContactList& wc, long r, Threa
       wc.dashpot[k] = wc.dashpot[first + from], wc.dashpot[first + from] = 0;  // and the dashpot's mark
     }
   }
-  for (int e = 0; e < n; ++e) {
-    const int k = first + e;
-    if (!take[e]) {
-      if (in.wall_forces && wc.active[k]) in.wall_forces[in.wall_rank[k]].active = 0;  // else 0 already
-      wc.active[k] = 0;
-      wc.spring[k] = Vec3::Zero();
-      wc.rolling[k] = Vec3::Zero();
-      wc.dashpot[k] = 0;
-      wc.sum[k] = ContactSum();
-      continue;
-    }
-    const WallGeometry& g = in.geometry[wc.slot_j[k]];
-    const double dist = to_wall[e].norm();
-    ContactKinematics c;
-    // A centre exactly on the wall has no direction to the contact point: use the plane normal.
-    c.n = dist > 0 ? Vec3(to_wall[e] * (1.0 / dist)) : g.normal;  // one division, as the pair contacts
-    c.overlap = p.radius[i] - dist;  // eq. 2.17
-    // eq. 2.18: the velocity of the wall's material at the contact point enters.
-    const Vec3 v_wall = g.velocity_of(p.x[i] + to_wall[e]);
-    c.v_rel = v_wall - p.v[i];
-    c.w_arm = p.radius[i] * p.w[i];
-    c.m_eff = p.mass[i];
-    c.r_eff = p.radius[i];  // a wall: infinite radius, eq. H3
-    c.w_rel = Model::has_rolling ? Vec3(p.w[i] - g.spin) : Vec3::Zero();  // unread without rolling, but copied
-    found.add(k, in.materials.pair(p.material[i], in.walls[wc.slot_j[k]].material), c, v_wall);
-  }
+  for (int e = 0; e < n; ++e) take_wall_candidate<Model>(in, wc, first + e, i, take[e], to_wall[e], found);
 }
 
 // The loads of the wall contacts `found` (their law done) added to their particles', in order;

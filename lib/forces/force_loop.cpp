@@ -20,19 +20,8 @@ void counted_wall_touches(const Particles& p, const std::vector<WallGeometry>& g
   const int i = wc.slot_i[first];
   const double reach = gap > 0 ? p.radius[i] * (1 + gap) : p.radius[i];
   const double r2 = reach * reach;
-  for (int e = 0; e < n; ++e) {
-    const WallGeometry& g = geometry[wc.slot_j[first + e]];
-    // Farther from the element's plane than the radius (with a margin far above round-off): no
-    // touch, whatever the closest point. Its direction is read only where it was a contact at the
-    // last step (a new contact may take over its spring) or holds a bond: only those pay for the
-    // closest point. (In a settling box most wall candidates are such near misses.)
-    const double h = (p.x[i] - g.vertices[0]).dot(g.normal);
-    if (!wc.active[first + e] && !wc.bonded[first + e] && h * h > r2 * (1 + 1e-6)) {
-      touching[e] = 0;
-      continue;
-    }
-    touching[e] = wall_gap2(p, g, i, to_wall[e]) < r2;
-  }
+  for (int e = 0; e < n; ++e)
+    touching[e] = wall_touches(p, geometry[wc.slot_j[first + e]], i, r2, wc.active[first + e], wc.bonded[first + e], to_wall[e]);
   select_wall_contacts(to_wall, touching, n, p.radius[i], take, order);
 }
 

@@ -163,6 +163,16 @@ inline double wall_gap2(const Particles& p, const WallGeometry& g, int i, Vec3& 
   to_wall = closest_point(g, p.x[i]) - p.x[i];
   return to_wall.squaredNorm();  // touching when < radius^2
 }
+// Whether particle i (reach^2 = r2) touches element g, `to_wall` its closest point - centre. Farther
+// from the element's plane than the reach (with a margin far above round-off): no touch, whatever
+// the closest point, and `to_wall` is left unset, unless the candidate was a contact at the last
+// step (a new contact may take over its spring) or holds a bond: only those and the near ones pay
+// for the closest point. (In a settling box most wall candidates are such near misses.)
+inline bool wall_touches(const Particles& p, const WallGeometry& g, int i, double r2, bool was_active, bool bonded, Vec3& to_wall) {
+  const double h = (p.x[i] - g.vertices[0]).dot(g.normal);
+  if (!was_active && !bonded && h * h > r2 * (1 + 1e-6)) return false;
+  return wall_gap2(p, g, i, to_wall) < r2;
+}
 
 // Which wall candidates of one particle are contacts. Where mesh elements meet, the same touch is
 // seen by several elements (a face and its neighbour's edge, or two faces at their common edge):
