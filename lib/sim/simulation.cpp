@@ -48,7 +48,10 @@ class OneThreadIf {
 void Simulation::advance() {
   const OneThreadIf small(static_cast<long>(particles.size()) < params.parallel_min_particles);
   step_threads_ = omp_get_max_threads();
-  if (params.sort_every > 0 && step % params.sort_every == 0 && static_cast<long>(particles.size()) >= params.sort_min_particles)
+  // Also at a run's first step: a checkpoint holds the particles by id, which puts neighbours
+  // anywhere in storage until the next sort (up to sort_every steps).
+  if (params.sort_every > 0 && (step % params.sort_every == 0 || !storage_sorted_) &&
+      static_cast<long>(particles.size()) >= params.sort_min_particles)
     sort_storage();
   const bool any_fixed = particles.any_fixed();
   const bool any_prescribed = any_fixed && particles.any_prescribed();
@@ -318,8 +321,8 @@ double Simulation::skin() const {
 }
 
 void Simulation::sort_storage() {
-  // Cells of edge one largest diameter (at most 2^20 per axis), in z, then y, then x order; within
-  // a cell the old order.
+  // Cells of edge one largest diameter (at most 2^20 per axis), row by row; within a cell the old
+  // order.
   const Particles& p = particles;
   const std::size_t n = p.size();
   if (n == 0) return;
@@ -334,17 +337,23 @@ void Simulation::sort_storage() {
     edge[d] = std::max(2 * rmax, (hi[d] - lo[d]) / kMaxCells);
     dims[d] = static_cast<std::int64_t>(std::min(kMaxCells, (hi[d] - lo[d]) / edge[d])) + 1;
   }
+  // The axis with the most cells varies slowest (z first where the counts tie): neighbours across
+  // it then lie a layer of the other two axes' cells apart in storage, the fewest there are (a thin
+  // slab ordered along its thin axis first put a particle's neighbours a quarter of the slab apart).
+  std::array<int, 3> axis{2, 1, 0};
+  std::stable_sort(axis.begin(), axis.end(), [&](int a, int b) { return dims[a] > dims[b]; });
   std::vector<std::pair<std::int64_t, std::size_t>> key(n);
 #pragma omp parallel for schedule(static)
   for (long k = 0; k < static_cast<long>(n); ++k) {
     std::array<std::int64_t, 3> c;
     for (int d = 0; d < 3; ++d) c[d] = static_cast<std::int64_t>(std::min<double>(dims[d] - 1, (p.x[k][d] - lo[d]) / edge[d]));
-    key[k] = {(c[2] * dims[1] + c[1]) * dims[0] + c[0], static_cast<std::size_t>(k)};
+    key[k] = {(c[axis[0]] * dims[axis[1]] + c[axis[1]]) * dims[axis[2]] + c[axis[2]], static_cast<std::size_t>(k)};
   }
   std::sort(key.begin(), key.end());  // (cell, old slot): unique keys, one order for any thread count
   std::vector<std::size_t> order(n);
   for (std::size_t k = 0; k < n; ++k) order[k] = key[k].second;
   particles.reorder(order);
+  storage_sorted_ = true;
   // The slots in the lists are stale: the next search rebuilds them (history is kept by ids).
   neighbours_.invalidate();
   fluid_grains_.clear();  // rebuilt in the new order from the void fractions, which moved with their particles

@@ -31,9 +31,9 @@ struct SimParams {
                                      // scale (sim/energy_audit.hpp); 0 = no check
   double skin = 0;                   // neighbour-list skin [m]; 0 = 0.2 x mean radius. Speed only:
                                      // the contacts found do not depend on it
-  // Storage order: every sort_every steps (at steps that are multiples of it, so that a resumed run
-  // sorts where an uninterrupted one does), samples of at least sort_min_particles are put in the
-  // order of a grid of cells, so that neighbours sit close in memory. 0 = never. The pair lists
+  // Storage order: at a simulation's first step and every sort_every steps (at steps that are
+  // multiples of it), samples of at least sort_min_particles are put in the order of a grid of
+  // cells, so that neighbours sit close in memory. 0 = never. The pair lists
   // follow the storage order, so both the particle and the contact loops become local: a
   // 100,000-sphere gen-primary settle to t = 0.4 s took 134 s sorted every 1,000 steps against 204 s
   // never sorted (bench/results/locality.md). Speed only: each particle's loads are summed in
@@ -231,6 +231,7 @@ class Simulation {
   std::vector<long> block_needs_;  // per load block, the first block holding a candidate of its particles
   std::vector<long> needed_from_;  // per load block, the least block_needs_ of it and those after
   long indexed_block_ = 0;         // load_block of block_first_
+  bool storage_sorted_ = false;    // sort_storage has run on this simulation's particles
   BlockTimes force_times_, integrate_times_;  // per load block, its time in each loop at the last step
   std::vector<long> block_done_;  // per load block, the epoch of the force loop that last computed it
   std::vector<std::uint8_t> touched_;  // per slot, the force loop's stamp where it last had a pair contact (ForceBlocks)
