@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <map>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
@@ -132,6 +133,40 @@ TEST(Region, MeshHollowCube) {
                                    std::min((x.array() - 1).abs().minCoeff(), (x.array() - 2).abs().minCoeff())));
     if (margin < 1e-9) continue;
     ASSERT_EQ(hollow.contains(x), in_outer && !in_inner) << x.transpose();
+  }
+}
+
+// any_inside (a sink's test of every particle at every event) answers as contains() over the
+// points, for each kind: no point inside, and one inside placed first, in the middle or last,
+// below and above the count (16,384) from which it runs on all threads.
+TEST(Region, AnyInsideIsContainsOverThePoints) {
+  std::vector<Region> kinds(5);
+  kinds[0].kind = Region::Kind::Box, kinds[0].min = Vec3(-0.1, -0.1, -0.1), kinds[0].max = Vec3(0.1, 0.1, 0.1);
+  kinds[1].kind = Region::Kind::Sphere, kinds[1].radius = 0.1;
+  kinds[2].kind = Region::Kind::Cylinder, kinds[2].radius = 0.1, kinds[2].length = 0.2;
+  kinds[3].kind = Region::Kind::HalfSpace, kinds[3].point = Vec3(0, 0, -0.5), kinds[3].normal = Vec3(0, 0, -1);
+  kinds[4].kind = Region::Kind::Mesh;
+  kinds[4].mesh = std::make_shared<ClosedMesh>(cube_triangles(Vec3::Constant(-0.1), Vec3::Constant(0.1), false));
+  std::mt19937_64 rng(14);
+  for (const long n : {100L, 20000L}) {
+    std::vector<Vec3> far(n);  // all outside every region: the shell 0.3 < |x| < 0.4 above z = -0.3
+    for (Vec3& x : far) {
+      do x = random_point(rng, 0.4);
+      while (x.norm() < 0.3 || x.norm() > 0.4 || x.z() < -0.3);
+    }
+    for (const Region& g : kinds) {
+      const Vec3 inside = g.kind == Region::Kind::HalfSpace ? Vec3(0, 0, -0.6) : Vec3(0.01, -0.02, 0.03);
+      ASSERT_TRUE(g.contains(inside));
+      bool any = false;
+      for (const Vec3& x : far) any = any || g.contains(x);
+      ASSERT_FALSE(any) << "the far points must all be outside";
+      EXPECT_FALSE(g.any_inside(far)) << n << " points, kind " << static_cast<int>(g.kind);
+      for (const long at : {0L, n / 2, n - 1}) {
+        std::vector<Vec3> one = far;
+        one[at] = inside;
+        EXPECT_TRUE(g.any_inside(one)) << n << " points, kind " << static_cast<int>(g.kind) << ", the inside one at " << at;
+      }
+    }
   }
 }
 

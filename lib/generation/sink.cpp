@@ -11,6 +11,7 @@ namespace dem {
 std::size_t sink_due(Simulation& sim, const SinkSpec& spec, std::int64_t stage_step, SinkTotals& totals) {
   if (stage_step % spec.every != 0) return 0;
   const Particles& p = sim.particles;
+  if (!spec.region.any_inside(p.x)) return 0;  // most events: one pass, nothing allocated
   const std::vector<char> in = centres_inside(p, spec.region);
   std::vector<std::pair<Index, double>> gone;  // (id, mass) of the particles in the region
   for (std::size_t k = 0; k < p.size(); ++k)

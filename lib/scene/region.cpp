@@ -98,20 +98,42 @@ double ClosedMesh::volume() const {
   return std::abs(six) / 6;
 }
 
-bool Region::contains(const Vec3& x) const {
-  switch (kind) {
-    case Kind::Box: return (x.array() >= min.array()).all() && (x.array() <= max.array()).all();
-    case Kind::Sphere: return (x - centre).squaredNorm() <= radius * radius;
-    case Kind::Cylinder: {
-      const Vec3 d = x - centre;
-      const double along = d.dot(axis);
-      if (length > 0 && std::abs(along) > 0.5 * length) return false;
-      return (d - along * axis).squaredNorm() <= radius * radius;
-    }
-    case Kind::HalfSpace: return (x - point).dot(normal) >= 0;
-    case Kind::Mesh: return mesh->contains(x);
+namespace {
+
+// Calls f with the inside test of r's kind (a callable on a point), chosen once: contains() takes
+// it for one point, any_inside() for many.
+template <class F>
+bool with_inside_test(const Region& r, F f) {
+  switch (r.kind) {
+    case Region::Kind::Box:
+      return f([&](const Vec3& x) { return (x.array() >= r.min.array()).all() && (x.array() <= r.max.array()).all(); });
+    case Region::Kind::Sphere: return f([&](const Vec3& x) { return (x - r.centre).squaredNorm() <= r.radius * r.radius; });
+    case Region::Kind::Cylinder:
+      return f([&](const Vec3& x) {
+        const Vec3 d = x - r.centre;
+        const double along = d.dot(r.axis);
+        return !(r.length > 0 && std::abs(along) > 0.5 * r.length) && (d - along * r.axis).squaredNorm() <= r.radius * r.radius;
+      });
+    case Region::Kind::HalfSpace: return f([&](const Vec3& x) { return (x - r.point).dot(r.normal) >= 0; });
+    case Region::Kind::Mesh: return f([&](const Vec3& x) { return r.mesh->contains(x); });
   }
   return false;
+}
+
+}  // namespace
+
+bool Region::contains(const Vec3& x) const {
+  return with_inside_test(*this, [&](auto inside) { return inside(x); });
+}
+
+bool Region::any_inside(const std::vector<Vec3>& x) const {
+  const long n = static_cast<long>(x.size());
+  return with_inside_test(*this, [&](auto inside) {
+    int found = 0;  // no early exit: the loop stays one plain pass
+#pragma omp parallel for schedule(static) reduction(| : found) if (n > 16384)
+    for (long k = 0; k < n; ++k) found |= inside(x[k]);
+    return found != 0;
+  });
 }
 
 }  // namespace dem

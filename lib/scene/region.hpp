@@ -53,6 +53,8 @@ struct Region {
   // Is x inside? The boundary counts as inside (box, sphere, cylinder, half-space); for a mesh a
   // point on the surface itself may fall either way.
   bool contains(const Vec3& x) const;
+  // Does any of the points lie inside (contains(), its kind chosen once for them all)?
+  bool any_inside(const std::vector<Vec3>& x) const;
 };
 
 }  // namespace dem
