@@ -298,7 +298,7 @@ TEST(FluidDrag, ErgunBelowAndWenYuAboveTheSwitch) {
   const double re1 = rho * d * w / mu, cd = 24 / re1 * (1 + 0.15 * std::pow(re1, 0.687));
   const double stokes_area = kPi * d * d / 4;  // F = 1/2 C_d rho A w^2 on a lone sphere
   EXPECT_NEAR(drag_per_volume(1.0, d, w, mu, rho) * w * kPi * d * d * d / 6, 0.5 * cd * rho * stokes_area * w * w, 1e-15);
-  // P74 on the Wen & Yu side (bisection): the speed found carries eps G / (1 - eps) to 1e-12; a
+  // P74 on the Wen & Yu side (Newton's method): the speed found carries eps G / (1 - eps) to 1e-12; a
   // grain above 0.95 takes the speed of 0.95.
   const double G = 1e4;
   for (const double eps : {0.85, 0.95}) {
@@ -306,6 +306,19 @@ TEST(FluidDrag, ErgunBelowAndWenYuAboveTheSwitch) {
     EXPECT_NEAR(drag_per_volume(eps, d, u, mu, rho) * u, need, 1e-12 * need) << "eps " << eps;
   }
   EXPECT_EQ(interstitial_speed(0.99, d, G, mu, rho), interstitial_speed(0.95, d, G, mu, rho));
+  // Both sides of Re = 1000 (C_d 0.44 above), from creeping flow to a speed of Re 1e5, and a
+  // gradient whose root falls in the drag's jump at Re = 1000 (the speed is then Re = 1000's).
+  for (const double eps : {0.8, 0.9})
+    for (const double g : {1e-2, 1e2, 1e5, 1e7, 1e9}) {
+      const double u = interstitial_speed(eps, d, g, mu, rho), need = eps * g / (1 - eps);
+      EXPECT_NEAR(drag_per_volume(eps, d, u, mu, rho) * u, need, 1e-12 * need) << "eps " << eps << ", gradient " << g;
+    }
+  const double eps = 0.9, jump = 1000 * mu / (eps * rho * d);  // Re = 1000
+  const double below_jump = drag_per_volume(eps, d, std::nextafter(jump, 0.0), mu, rho) * jump;
+  const double above_jump = drag_per_volume(eps, d, jump, mu, rho) * jump;
+  ASSERT_LT(below_jump, above_jump);
+  const double in_jump = 0.5 * (below_jump + above_jump) * (1 - eps) / eps;  // the gradient that needs it
+  EXPECT_EQ(interstitial_speed(eps, d, in_jump, mu, rho), jump);
 }
 
 // The well (P75): the pressure gradient is the derivative of p(r) = p_w + dp ln(r/r_w)/ln(r_e/r_w),
