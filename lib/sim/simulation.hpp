@@ -33,12 +33,10 @@ struct SimParams {
                                      // the contacts found do not depend on it
   // Storage order: at a simulation's first step and every sort_every steps (at steps that are
   // multiples of it), samples of at least sort_min_particles are put in the order of a grid of
-  // cells, so that neighbours sit close in memory. 0 = never. The pair lists
-  // follow the storage order, so both the particle and the contact loops become local: a
-  // 100,000-sphere gen-primary settle to t = 0.4 s took 134 s sorted every 1,000 steps against 204 s
-  // never sorted (bench/results/locality.md). Speed only: each particle's loads are summed in
-  // an order of its own (its contacts' keys; forces/force_loop.hpp ForceBlocks), so no storage order
-  // changes a bit.
+  // cells, so that neighbours sit close in memory. 0 = never. The pair lists follow the storage
+  // order, so both the particle and the contact loops become local (bench/results/locality.md).
+  // Speed only: each particle's loads are summed in an order of its own (its contacts' keys;
+  // forces/force_loop.hpp ForceBlocks), so no storage order changes a bit.
   long sort_every = 1000;
   long sort_min_particles = 10000;
   // A step of fewer particles than this runs on one thread: on a small scene the parallel regions'
