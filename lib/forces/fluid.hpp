@@ -48,10 +48,13 @@ struct Ergun {
   double viscous, inertial;  // [kg/(m^3 s)], [kg/m^4]
 };
 
+// Wen & Yu's beta / (1 - eps) in the Stokes limit (Re -> 0, P72-P73): 18 mu eps^-2.65 / d^2.
+inline double wen_yu_stokes(double eps, double d, double mu) { return 18 * mu / (d * d) * std::pow(eps, -2.65); }
+
 // beta / (1 - eps) of Wen & Yu (P72-P73, eps >= 0.8), arguments as drag_per_volume's below.
 inline double wen_yu_drag(double eps, double d, double w, double mu, double rho) {
   const double re = eps * rho * d * w / mu;
-  if (re <= 0) return 18 * mu / (d * d) * std::pow(eps, -2.65);  // Stokes limit of Wen & Yu
+  if (re <= 0) return wen_yu_stokes(eps, d, mu);
   return 0.75 * schiller_naumann_cd(re) * eps * rho * w / d * std::pow(eps, -2.65);  // Wen & Yu
 }
 
@@ -78,7 +81,7 @@ inline double flow_share(double eps) {
 inline double wen_yu_speed(double eps, double d, double g, double mu, double rho) {
   const double need = flow_share(eps) * g;  // drag_per_volume(w) w
   eps = std::min(eps, kFlowVoidMax);
-  const double a = 18 * mu / (d * d) * std::pow(eps, -2.65), b = eps * rho * d / mu;
+  const double a = wen_yu_stokes(eps, d, mu), b = eps * rho * d / mu;
   double w = need / a;  // Stokes: above the root
   for (int k = 0; k < 200; ++k) {
     const double inertia = 0.15 * std::pow(b * w, 0.687);
