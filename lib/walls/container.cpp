@@ -166,11 +166,13 @@ Container::Container(const std::vector<Wall>& walls, double t, const Particles& 
   std::vector<Part> parts(chunks);
 #pragma omp parallel for schedule(static) if (chunks > 1)
   for (long c = 0; c < chunks; ++c) {
-    Part& q = parts[c];
-    for (long i = c * kChunk; i < std::min(n, (c + 1) * kChunk); ++i) {
+    Part q;  // in registers: a chunk's entry of `parts`, which the compiler must assume p.x may alias, is written once
+    const long first = c * kChunk, last = std::min(n, first + kChunk);
+    for (long i = first; i < last; ++i) {
       q.sum += p.x[i], q.lo = q.lo.cwiseMin(p.x[i]), q.hi = q.hi.cwiseMax(p.x[i]);
       if (up) q.top = std::max(q.top, -down.dot(p.x[i]) + p.radius[i]);
     }
+    parts[c] = q;
   }
   double top = -INFINITY;
   for (const Part& q : parts) centroid_ += q.sum, lo_ = lo_.cwiseMin(q.lo), hi_ = hi_.cwiseMax(q.hi), top = std::max(top, q.top);
