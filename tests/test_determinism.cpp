@@ -116,6 +116,53 @@ Simulation make_pressed_lattice(bool x_walls = false) {
   return sim;
 }
 
+// A removal after a step (the sink, the `remove` action: generation/fill.hpp remove_marked)
+// filters the candidate lists and keeps the neighbour list (Simulation::remove_from_lists), so no
+// search follows; the run keeps the bits of one that searches again after each removal, its
+// history carried over by id keys (the lists first replaced by the contacts, as a checkpoint's
+// are). The pressed lattice with walls, half its contacts bonded, two threads, its storage
+// re-sorted every 10 steps; five particles removed every 8 steps, six times.
+TEST(Determinism, ARemovalFiltersTheListsWithTheBitsOfANewSearch) {
+  const int threads_before = omp_get_max_threads();
+  omp_set_num_threads(2);
+  const auto scene = [] {
+    Simulation s = make_pressed_lattice(true);
+    s.params.sort_min_particles = 0, s.params.sort_every = 10;
+    s.params.skin = 0.3e-3;  // no rebuild from the particles' own motion within these steps
+    s.advance();
+    s.bond_present_contacts(true);
+    return s;
+  };
+  Simulation filtered = scene(), searched = scene();
+  ASSERT_GT(filtered.bonds(), 1000);
+  std::mt19937_64 rng(3);
+  std::size_t removed = 0;
+  for (int round = 0; round < 6; ++round) {
+    for (int k = 0; k < 7; ++k) filtered.advance(), searched.advance();
+    std::vector<char> gone(filtered.particles.size(), 0);
+    for (int r = 0; r < 5; ++r) gone[rng() % gone.size()] = 1;
+    searched.set_contacts(searched.pair_contacts(), searched.wall_contacts());
+    const std::int64_t builds = filtered.neighbour_builds();
+    const std::size_t n = remove_marked(filtered, gone);
+    ASSERT_EQ(remove_marked(searched, gone), n);
+    removed += n;
+    const bool sorts = filtered.step % 10 == 0;  // this step re-sorts the storage, and so searches
+    filtered.advance(), searched.advance();
+    if (!sorts) EXPECT_EQ(filtered.neighbour_builds(), builds) << "a search after the removal, round " << round;
+    ASSERT_EQ(filtered.particles.size(), searched.particles.size());
+    EXPECT_TRUE(same_bits(filtered.particles.id, searched.particles.id)) << "round " << round;
+    EXPECT_TRUE(same_bits(filtered.particles.x, searched.particles.x)) << "round " << round;
+    EXPECT_TRUE(same_bits(filtered.particles.v, searched.particles.v)) << "round " << round;
+    EXPECT_TRUE(same_bits(filtered.particles.w, searched.particles.w)) << "round " << round;
+  }
+  EXPECT_GE(removed, 25u);
+  EXPECT_EQ(filtered.bonds(), searched.bonds());
+  EXPECT_TRUE(same_bits(filtered.pair_contacts().key_i, searched.pair_contacts().key_i));
+  EXPECT_TRUE(same_bits(filtered.pair_contacts().spring, searched.pair_contacts().spring));
+  EXPECT_TRUE(same_bits(filtered.wall_contacts().spring, searched.wall_contacts().spring));
+  omp_set_num_threads(threads_before);
+}
+
 // SimParams::parallel_min_particles: a step of fewer particles runs on one thread, a larger one on
 // all, and the caller's thread count is back after the step; the bits are those of two threads
 // throughout (the pressed lattice: 1,000 spheres, every sum of six contacts).

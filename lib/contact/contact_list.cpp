@@ -4,6 +4,8 @@
 #include <parallel/algorithm>
 #include <utility>
 
+#include "core/keep_items.hpp"
+
 namespace dem {
 
 namespace {
@@ -59,6 +61,12 @@ void ContactList::push_back_from(const ContactList& from, std::size_t k) {
   active.push_back(from.active[k]);
   normal.push_back(from.normal[k]);
   sum.push_back(from.sum[k]);
+}
+
+void ContactList::keep_only(const std::vector<bool>& keep) {
+  keep_items(key_i, keep), keep_items(key_j, keep), keep_items(slot_i, keep), keep_items(slot_j, keep);
+  keep_items(spring, keep), keep_items(rolling, keep), keep_items(bonded, keep), keep_items(dashpot, keep);
+  keep_items(active, keep), keep_items(normal, keep), keep_items(sum, keep);
 }
 
 namespace {

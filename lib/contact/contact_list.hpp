@@ -45,6 +45,8 @@ struct ContactList {
   void reserve(std::size_t n);
   // Appends entry k of `from` (all fields).
   void push_back_from(const ContactList& from, std::size_t k);
+  // Keeps the entries whose `keep` flag is set (all fields), in their order.
+  void keep_only(const std::vector<bool>& keep);
 };
 
 // A pair found by the search (particle ids or particle id and wall index), ordered by key.

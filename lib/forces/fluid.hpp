@@ -11,6 +11,7 @@
 #include <numbers>
 #include <vector>
 
+#include "core/keep_items.hpp"
 #include "core/types.hpp"
 #include "simd/lanes.hpp"
 #include "state/load_sum.hpp"
@@ -150,6 +151,9 @@ struct FluidGrains {
     for (auto* a : {&eps, &d, &viscous, &inertial, &twice_share, &viscous2, &reach, &volume, &displaced}) a->resize(n);
   }
   void clear() { resize(0); }
+  void keep_only(const std::vector<bool>& keep) {
+    for (auto* a : {&eps, &d, &viscous, &inertial, &twice_share, &viscous2, &reach, &volume, &displaced}) keep_items(*a, keep);
+  }
   void set(long i, const FluidGrain& g) {
     const ErgunGrain<double> e = g.lane();
     eps[i] = g.eps, d[i] = g.d, viscous[i] = e.viscous, inertial[i] = e.inertial, twice_share[i] = e.twice_share;

@@ -176,6 +176,9 @@ std::size_t remove_particles(Simulation& sim, const Region& region, bool inside)
 }
 
 std::size_t remove_marked(Simulation& sim, const std::vector<char>& gone) {
+  const std::size_t count = static_cast<std::size_t>(std::count_if(gone.begin(), gone.end(), [](char g) { return g != 0; }));
+  if (count == 0) return 0;
+  if (sim.remove_from_lists(gone)) return count;  // after a step: no search follows
   Particles& p = sim.particles;
   std::vector<bool> keep(p.size());
   std::set<Index> ids;

@@ -21,9 +21,7 @@ std::size_t sink_due(Simulation& sim, const SinkSpec& spec, std::int64_t stage_s
   std::sort(gone.begin(), gone.end());
   for (const auto& [id, m] : gone) totals.mass += m;
   totals.count += static_cast<std::int64_t>(gone.size());
-  remove_marked(sim, in);
-  // The particle count changed: the neighbour list is built again at the next step, the contact
-  // history carried over by key (as after an insertion).
+  remove_marked(sim, in);  // after a step: the lists filtered, no neighbour search (Simulation::remove_from_lists)
   sim.release_contact_views();
   return gone.size();
 }

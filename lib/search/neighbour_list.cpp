@@ -7,6 +7,7 @@
 
 #include <omp.h>
 
+#include "core/keep_items.hpp"
 #include "search/largest_move.hpp"
 
 namespace dem {
@@ -39,6 +40,10 @@ bool NeighbourList::needs_rebuild(const Particles& p, const PeriodicBox& box, co
     for (int v = 0; v < walls[w].count; ++v) dw2 = std::max(dw2, (walls[w].vertices[v] - wall_build_[4 * w + v]).squaredNorm());
   const double dw = std::sqrt(dw2);
   return 2 * dp > skin || dp + dw > skin;
+}
+
+void NeighbourList::keep_only(const std::vector<bool>& keep) {
+  keep_items(x_build_, keep), keep_items(id_build_, keep), keep_items(fixed_build_, keep);
 }
 
 void NeighbourList::build(const Particles& p, const PeriodicBox& box, const std::vector<WallGeometry>& walls, double margin,

@@ -21,6 +21,12 @@ class NeighbourList {
   bool update(const Particles& p, const PeriodicBox& box, const std::vector<WallGeometry>& walls, double margin, double skin);
   // Forget the list (particle storage was reordered): the next update rebuilds it.
   void invalidate() { valid_ = false; }
+  // Whether the list is built for the particles as stored now (no reorder, insertion or removal since).
+  bool valid() const { return valid_; }
+  // The particles whose `keep` flag is set stay, in their order, the others are removed: the list
+  // stays valid (each pair of those left that it held stays within its reach), its reference
+  // positions those of the particles left. The caller filters its candidates alike.
+  void keep_only(const std::vector<bool>& keep);
 
   // Pair candidates with the storage slots of the last build, grouped by the smaller slot (key order
   // within a group; LinkedCells::find_near_pairs), and where each slot's group starts (+ the end).

@@ -206,6 +206,54 @@ void Simulation::set_contacts(ContactList pairs, ContactList walls) {
   count_bonds();
 }
 
+namespace {
+// A key order (KeyOrder) of a list from which the entries not in `kept` were removed, `place`
+// their new positions (an empty order, the list stored in key order, stays so).
+KeyOrder kept_in_key_order(const KeyOrder& by_key, const std::vector<bool>& kept, const std::vector<int>& place) {
+  KeyOrder out;
+  for (int k : by_key)
+    if (kept[k]) out.push_back(place[k]);
+  return out;
+}
+}  // namespace
+
+bool Simulation::remove_from_lists(const std::vector<char>& gone) {
+  const std::size_t n = particles.size();
+  if (!neighbours_.valid() || gone.size() != n) return false;
+  std::vector<bool> keep(n);
+  std::vector<int> slot(n, -1);  // each particle's slot once the others are gone
+  int left = 0;
+  for (std::size_t k = 0; k < n; ++k)
+    if ((keep[k] = !gone[k])) slot[k] = left++;
+  // Each list's entries of particles left, renumbered, in their order: still grouped by the smaller
+  // slot in slot order (the renumbering keeps the slots' order), as the force loop reads them.
+  const auto filter = [&](ContactList& list, KeyOrder& by_key, bool pairs) {
+    std::vector<bool> kept(list.size());
+    std::vector<int> place(list.size(), -1);
+    int next = 0;
+    for (std::size_t k = 0; k < list.size(); ++k)
+      if ((kept[k] = keep[list.slot_i[k]] && (!pairs || keep[list.slot_j[k]]))) place[k] = next++;
+    by_key = kept_in_key_order(by_key, kept, place);
+    list.keep_only(kept);
+    for (int& i : list.slot_i) i = slot[i];
+    if (pairs)
+      for (int& j : list.slot_j) j = slot[j];
+  };
+  if (!pair_by_key_current_) pair_by_key_.clear();  // sorted again when asked
+  filter(pairs_, pair_by_key_, true);
+  filter(walls_, wall_by_key_, false);
+  particles.keep_only(keep);
+  neighbours_.keep_only(keep);
+  if (fluid_grains_.size() == static_cast<long>(n)) fluid_grains_.keep_only(keep);
+  rank_wall_candidates();
+  index_contacts_per_particle();
+  count_bonds();
+  contacts_modified();
+  ledger_work_zeros_ = false;  // the ledger's per-candidate arrays are sized anew
+  energy_.valid = false;       // particles changed: the energy check takes a new reference
+  return true;
+}
+
 void Simulation::report_overlap(double worst) const {
   // Name the contact(s) with the largest overlap, recomputed as the force loop does (where the
   // step's motion joined the force loop, the particles have moved since: then it names those with

@@ -114,6 +114,11 @@ class Simulation {
   // Replaces the contact history (checkpoint read, a new scene, new particles): lists sorted by
   // key, slots found again at the next step.
   void set_contacts(ContactList pairs, ContactList walls);
+  // Removes the particles marked in `gone` (per storage slot) and their candidates where the
+  // neighbour list is current (as after a step): the others keep their order, history and
+  // candidates (a filtered list still holds every pair within reach of those left), so no search
+  // follows. Returns false, changing nothing, where the list is not current.
+  bool remove_from_lists(const std::vector<char>& gone);
 
   // Stage action `bond`: Φ = 1 for every particle contact present now (and wall contacts if asked),
   // a pair counting as present when its gap is below `gap` x the smaller radius (a wall contact:

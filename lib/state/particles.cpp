@@ -2,16 +2,11 @@
 
 #include <algorithm>
 
+#include "core/keep_items.hpp"
+
 namespace dem {
 
 namespace {
-template <class T>
-void compact(std::vector<T>& a, const std::vector<bool>& keep) {
-  std::size_t out = 0;
-  for (std::size_t k = 0; k < a.size(); ++k)
-    if (keep[k]) a[out++] = a[k];
-  a.resize(out);
-}
 template <class T>
 void gather(std::vector<T>& a, const std::vector<std::size_t>& order) {
   std::vector<T> b(a.size());
@@ -42,17 +37,17 @@ void Particles::reorder(const std::vector<std::size_t>& order) {
 }
 
 void Particles::keep_only(const std::vector<bool>& keep) {
-  compact(id, keep);
-  compact(x, keep);
-  compact(v, keep);
-  compact(w, keep);
-  compact(x_ref, keep);
-  compact(image, keep);
-  compact(radius, keep);
-  compact(mass, keep);
-  compact(material, keep);
-  compact(fixed, keep);
-  if (void_fraction.size() == keep.size()) compact(void_fraction, keep);
+  keep_items(id, keep);
+  keep_items(x, keep);
+  keep_items(v, keep);
+  keep_items(w, keep);
+  keep_items(x_ref, keep);
+  keep_items(image, keep);
+  keep_items(radius, keep);
+  keep_items(mass, keep);
+  keep_items(material, keep);
+  keep_items(fixed, keep);
+  if (void_fraction.size() == keep.size()) keep_items(void_fraction, keep);
 }
 
 Index Particles::max_id() const { return id.empty() ? -1 : *std::max_element(id.begin(), id.end()); }
