@@ -21,8 +21,9 @@ class NeighbourList {
   bool update(const Particles& p, const PeriodicBox& box, const std::vector<WallGeometry>& walls, double margin, double skin);
   // Forget the list (particle storage was reordered): the next update rebuilds it.
   void invalidate() { valid_ = false; }
-  // Whether the list is built for the particles as stored now (no reorder, insertion or removal since).
-  bool valid() const { return valid_; }
+  // Whether the list is built for these `particles` as stored now (no reorder, insertion or
+  // removal since, other than through keep_only).
+  bool valid_for(std::size_t particles) const { return valid_ && x_build_.size() == particles; }
   // The particles whose `keep` flag is set stay, in their order, the others are removed: the list
   // stays valid (each pair of those left that it held stays within its reach), its reference
   // positions those of the particles left. The caller filters its candidates alike.

@@ -219,7 +219,7 @@ KeyOrder kept_in_key_order(const KeyOrder& by_key, const std::vector<bool>& kept
 
 bool Simulation::remove_from_lists(const std::vector<char>& gone) {
   const std::size_t n = particles.size();
-  if (!neighbours_.valid() || gone.size() != n) return false;
+  if (!neighbours_.valid_for(n) || gone.size() != n) return false;
   std::vector<bool> keep(n);
   std::vector<int> slot(n, -1);  // each particle's slot once the others are gone
   int left = 0;
