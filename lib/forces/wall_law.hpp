@@ -46,11 +46,9 @@ struct WallContactsFound {
   void pad() {
     if (count == 0) return;
     const int e = count - 1;
-    for (int q = 1; q <= 3; ++q) {
-      k[e + q] = k[e], params[e + q] = params[e];
-      n[e + q] = n[e], v_rel[e + q] = v_rel[e], w_arm[e + q] = w_arm[e], w_rel[e + q] = w_rel[e], v_wall[e + q] = v_wall[e];
-      overlap[e + q] = overlap[e], m_eff[e + q] = m_eff[e], r_eff[e + q] = r_eff[e];
-    }
+    const Vec3 wall_velocity = v_wall[e];  // a copy: the arrays may grow below
+    for (int q = 0; q < 3; ++q) add(k[e], *params[e], kinematics(e), wall_velocity);
+    count -= 3;
   }
 
  private:
