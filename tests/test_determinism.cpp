@@ -91,7 +91,7 @@ TEST(Determinism, OneTwoAndThreeThreadsGiveTheSameBits) {
 // (unlike the sparse cloud, where few particles have three contacts at once). With x_walls, two
 // walls at x = 0 and x = 10 spacings press the first and last sphere of every row (storage is
 // sorted along z, then y, then x: such spheres lie in every block) in place of the period along x.
-Simulation make_pressed_lattice(bool x_walls = false) {
+Simulation make_pressed_lattice(bool x_walls = false, double radius_spread = 0) {
   Simulation sim;
   sim.materials = glass();
   sim.params.gravity = Vec3::Zero();
@@ -103,7 +103,7 @@ Simulation make_pressed_lattice(bool x_walls = false) {
   for (int k = 0; k < kSide; ++k)
     for (int j = 0; j < kSide; ++j)
       for (int i = 0; i < kSide; ++i) {
-        sim.particles.add(id, kSpacing * Vec3(i + 0.5, j + 0.5, k + 0.5), 0.5e-3, 1, 0);
+        sim.particles.add(id, kSpacing * Vec3(i + 0.5, j + 0.5, k + 0.5), 0.5e-3 * (1 + radius_spread * ((i + j + k) % 5)), 1, 0);
         sim.particles.v[id++] = Vec3(u(rng), u(rng), u(rng));
       }
   PeriodicBox box;
@@ -121,14 +121,20 @@ Simulation make_pressed_lattice(bool x_walls = false) {
 // search follows; the run keeps the bits of one that searches again after each removal, its
 // history carried over by id keys (the lists first replaced by the contacts, as a checkpoint's
 // are). The pressed lattice with walls, half its contacts bonded, two threads, its storage
-// re-sorted every 10 steps; five particles removed every 8 steps, six times.
-TEST(Determinism, ARemovalFiltersTheListsWithTheBitsOfANewSearch) {
+// re-sorted every 10 steps; five particles removed every 8 steps, six times. Twice: with the
+// scene's skin, and with the automatic one (0.2 x the mean radius, which the removals change: the
+// list keeps the skin it was built with) on radii of five sizes.
+class DeterminismRemoval : public ::testing::TestWithParam<bool> {};
+INSTANTIATE_TEST_SUITE_P(Skin, DeterminismRemoval, ::testing::Values(false, true),
+                         [](const auto& info) { return info.param ? "Automatic" : "Scene"; });
+TEST_P(DeterminismRemoval, ARemovalFiltersTheListsWithTheBitsOfANewSearch) {
   const int threads_before = omp_get_max_threads();
   omp_set_num_threads(2);
-  const auto scene = [] {
-    Simulation s = make_pressed_lattice(true);
+  const bool automatic = GetParam();
+  const auto scene = [automatic] {
+    Simulation s = make_pressed_lattice(true, automatic ? 0.002 : 0.0);
     s.params.sort_min_particles = 0, s.params.sort_every = 10;
-    s.params.skin = 0.3e-3;  // no rebuild from the particles' own motion within these steps
+    s.params.skin = automatic ? 0.0 : 0.3e-3;  // either: no rebuild from the particles' own motion within these steps
     s.advance();
     s.bond_present_contacts(true);
     return s;

@@ -5,6 +5,7 @@
 #include <random>
 
 #include "core/error.hpp"
+#include "core/keep_items.hpp"
 #include "generation/fill.hpp"
 #include "search/largest_move.hpp"
 #include "search/linked_cells.hpp"
@@ -386,6 +387,33 @@ TEST(ContactList, HistoryFollowsKeysWhereverStored) {
   for (std::size_t k = 0; k < grouped.size(); ++k) grouped.spring[k] = Vec3(0, grouped.key_i[k], grouped.key_j[k]);
   ASSERT_TRUE(carry_history_in_groups(grouped, second_grouped, groups, id_of_slot, from));
   EXPECT_EQ(grouped.spring, (std::vector<Vec3>{Vec3(0, 1, 5), Vec3(0, 1, 3), Vec3(0, 2, 3)}));
+}
+
+// Kept (core/keep_items.hpp) compacts an array by runs of kept items: the same items in the same
+// order as taking them one at a time, wherever the removed ones lie (first, last, in runs, none, all).
+TEST(Kept, CompactsAsTakingTheKeptItemsOneByOne) {
+  std::mt19937_64 rng(5);
+  for (const std::vector<bool>& keep :
+       {std::vector<bool>{}, {true, true, true}, {false, false}, {false, true, true, false, true, false, false, true}, {true, false}}) {
+    std::vector<int> a(keep.size()), want;
+    for (std::size_t k = 0; k < a.size(); ++k) a[k] = static_cast<int>(10 + k);
+    for (std::size_t k = 0; k < a.size(); ++k)
+      if (keep[k]) want.push_back(a[k]);
+    const Kept kept(keep);
+    kept.apply(a);
+    EXPECT_EQ(a, want);
+    EXPECT_EQ(kept.before(), keep.size());
+    EXPECT_EQ(kept.after(), want.size());
+  }
+  std::vector<bool> keep(10000);  // a few removed among many: long runs, each moved down at once
+  for (std::size_t k = 0; k < keep.size(); ++k) keep[k] = rng() % 500 != 0;
+  std::vector<Vec3> a(keep.size()), want;
+  for (std::size_t k = 0; k < a.size(); ++k) a[k] = Vec3(k, 2 * k, 3 * k);
+  for (std::size_t k = 0; k < a.size(); ++k)
+    if (keep[k]) want.push_back(a[k]);
+  ASSERT_LT(want.size(), a.size());
+  keep_items(a, Kept(keep));
+  EXPECT_EQ(a, want);
 }
 
 }  // namespace

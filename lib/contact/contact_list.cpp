@@ -63,7 +63,7 @@ void ContactList::push_back_from(const ContactList& from, std::size_t k) {
   sum.push_back(from.sum[k]);
 }
 
-void ContactList::keep_only(const std::vector<bool>& keep) {
+void ContactList::keep_only(const Kept& keep) {
   keep_items(key_i, keep), keep_items(key_j, keep), keep_items(slot_i, keep), keep_items(slot_j, keep);
   keep_items(spring, keep), keep_items(rolling, keep), keep_items(bonded, keep), keep_items(dashpot, keep);
   keep_items(active, keep), keep_items(normal, keep), keep_items(sum, keep);

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/keep_items.hpp"
 #include "core/types.hpp"
 
 namespace dem {
@@ -46,7 +47,7 @@ struct ContactList {
   // Appends entry k of `from` (all fields).
   void push_back_from(const ContactList& from, std::size_t k);
   // Keeps the entries whose `keep` flag is set (all fields), in their order.
-  void keep_only(const std::vector<bool>& keep);
+  void keep_only(const Kept& keep);
 };
 
 // A pair found by the search (particle ids or particle id and wall index), ordered by key.

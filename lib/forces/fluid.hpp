@@ -151,7 +151,7 @@ struct FluidGrains {
     for (auto* a : {&eps, &d, &viscous, &inertial, &twice_share, &viscous2, &reach, &volume, &displaced}) a->resize(n);
   }
   void clear() { resize(0); }
-  void keep_only(const std::vector<bool>& keep) {
+  void keep_only(const Kept& keep) {
     for (auto* a : {&eps, &d, &viscous, &inertial, &twice_share, &viscous2, &reach, &volume, &displaced}) keep_items(*a, keep);
   }
   void set(long i, const FluidGrain& g) {

@@ -42,7 +42,7 @@ bool NeighbourList::needs_rebuild(const Particles& p, const PeriodicBox& box, co
   return 2 * dp > skin || dp + dw > skin;
 }
 
-void NeighbourList::keep_only(const std::vector<bool>& keep) {
+void NeighbourList::keep_only(const Kept& keep) {
   keep_items(x_build_, keep), keep_items(id_build_, keep), keep_items(fixed_build_, keep);
 }
 
@@ -73,9 +73,16 @@ void NeighbourList::sort_pairs_by_key() {
 
 bool NeighbourList::update(const Particles& p, const PeriodicBox& box, const std::vector<WallGeometry>& walls, double margin,
                            double skin) {
-  if (!needs_rebuild(p, box, walls, margin, skin)) return false;
-  build(p, box, walls, margin, skin);
+  const bool automatic = !(skin > 0);
+  if (!needs_rebuild(p, box, walls, margin, automatic ? skin_build_ : skin)) return false;
+  build(p, box, walls, margin, automatic ? automatic_skin(p) : skin);
   return true;
+}
+
+double NeighbourList::automatic_skin(const Particles& p) {
+  double sum = 0;
+  for (double a : p.radius) sum += a;
+  return p.size() ? 0.2 * sum / p.size() : 0.0;
 }
 
 }  // namespace dem

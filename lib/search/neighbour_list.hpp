@@ -17,8 +17,13 @@ namespace dem {
 class NeighbourList {
  public:
   // Rebuilds if needed for the current positions; returns true when it did. `margin` is how far
-  // apart a bonded pair can still hold (0 without bonds); `skin` the extra distance listed.
+  // apart a bonded pair can still hold (0 without bonds); `skin` the extra distance listed: a
+  // value > 0 is the scene's (a new value rebuilds the list), 0 the automatic skin, worked out at
+  // each build (automatic_skin) and kept with the list until the next: a removal through
+  // keep_only, which changes the mean radius, keeps the list and its skin.
   bool update(const Particles& p, const PeriodicBox& box, const std::vector<WallGeometry>& walls, double margin, double skin);
+  // The automatic skin: 0.2 x the particles' mean radius.
+  static double automatic_skin(const Particles& p);
   // Forget the list (particle storage was reordered): the next update rebuilds it.
   void invalidate() { valid_ = false; }
   // Whether the list is built for these `particles` as stored now (no reorder, insertion or
@@ -27,7 +32,7 @@ class NeighbourList {
   // The particles whose `keep` flag is set stay, in their order, the others are removed: the list
   // stays valid (each pair of those left that it held stays within its reach), its reference
   // positions those of the particles left. The caller filters its candidates alike.
-  void keep_only(const std::vector<bool>& keep);
+  void keep_only(const Kept& keep);
 
   // Pair candidates with the storage slots of the last build, grouped by the smaller slot (key order
   // within a group; LinkedCells::find_near_pairs), and where each slot's group starts (+ the end).

@@ -207,12 +207,13 @@ void Simulation::set_contacts(ContactList pairs, ContactList walls) {
 }
 
 namespace {
-// A key order (KeyOrder) of a list from which the entries not in `kept` were removed, `place`
-// their new positions (an empty order, the list stored in key order, stays so).
-KeyOrder kept_in_key_order(const KeyOrder& by_key, const std::vector<bool>& kept, const std::vector<int>& place) {
+// A key order (KeyOrder) of a list from which some entries were removed, `place` the new position
+// of each entry (-1: removed); an empty order (the list stored in key order) stays so.
+KeyOrder kept_in_key_order(const KeyOrder& by_key, const std::vector<int>& place) {
   KeyOrder out;
+  out.reserve(by_key.size());
   for (int k : by_key)
-    if (kept[k]) out.push_back(place[k]);
+    if (place[k] >= 0) out.push_back(place[k]);
   return out;
 }
 }  // namespace
@@ -232,8 +233,8 @@ bool Simulation::remove_from_lists(const std::vector<char>& gone) {
     std::vector<int> place(list.size(), -1);
     int next = 0;
     for (std::size_t k = 0; k < list.size(); ++k)
-      if ((kept[k] = keep[list.slot_i[k]] && (!pairs || keep[list.slot_j[k]]))) place[k] = next++;
-    by_key = kept_in_key_order(by_key, kept, place);
+      if (slot[list.slot_i[k]] >= 0 && (!pairs || slot[list.slot_j[k]] >= 0)) kept[k] = true, place[k] = next++;
+    by_key = kept_in_key_order(by_key, place);
     list.keep_only(kept);
     for (int& i : list.slot_i) i = slot[i];
     if (pairs)
@@ -242,9 +243,10 @@ bool Simulation::remove_from_lists(const std::vector<char>& gone) {
   if (!pair_by_key_current_) pair_by_key_.clear();  // sorted again when asked
   filter(pairs_, pair_by_key_, true);
   filter(walls_, wall_by_key_, false);
-  particles.keep_only(keep);
-  neighbours_.keep_only(keep);
-  if (fluid_grains_.size() == static_cast<long>(n)) fluid_grains_.keep_only(keep);
+  const Kept stay(keep);
+  particles.keep_only(stay);
+  neighbours_.keep_only(stay);
+  if (fluid_grains_.size() == static_cast<long>(n)) fluid_grains_.keep_only(stay);
   rank_wall_candidates();
   index_contacts_per_particle();
   count_bonds();
@@ -361,13 +363,6 @@ void Simulation::set_periodic(const PeriodicBox& box) {
   neighbours_.invalidate();
 }
 
-double Simulation::skin() const {
-  if (params.skin > 0) return params.skin;
-  double sum = 0;
-  for (double a : particles.radius) sum += a;
-  return particles.size() ? 0.2 * sum / particles.size() : 0.0;  // 0.2 x mean radius
-}
-
 void Simulation::sort_storage() {
   // Cells of edge one largest diameter (at most 2^20 per axis), row by row; within a cell the old
   // order.
@@ -411,7 +406,7 @@ void Simulation::find_contacts() {
   // Bonded pairs hold in tension until they break: list that much further while bonds exist.
   const double margin = has_bonds_ ? 1.01 * materials.max_break_separation() : 0.0;
   update_wall_geometry();
-  if (!neighbours_.update(particles, periodic, wall_geometry_, margin, skin())) return;
+  if (!neighbours_.update(particles, periodic, wall_geometry_, margin, params.skin)) return;
   ledger_work_zeros_ = false;  // new candidates
   // New candidates: carry the history over by key; which pairs touch is decided by the force loop.
   // Both lists are stored along the particles' storage order (locality when the storage is sorted):

@@ -29,7 +29,7 @@ struct SimParams {
   double max_overlap = 0.5;          // stop when an overlap exceeds this fraction of the smaller radius
   double max_energy_gain = 0.5;      // stop when energy is created beyond this fraction of the energy
                                      // scale (sim/energy_audit.hpp); 0 = no check
-  double skin = 0;                   // neighbour-list skin [m]; 0 = 0.2 x mean radius. Speed only:
+  double skin = 0;                   // neighbour-list skin [m]; 0 = 0.2 x mean radius at each search. Speed only:
                                      // the contacts found do not depend on it
   // Storage order: at a simulation's first step and every sort_every steps (at steps that are
   // multiples of it), samples of at least sort_min_particles are put in the order of a grid of
@@ -151,7 +151,6 @@ class Simulation {
   // The largest radius and overlap of this run's contacts, for a stiffness that grows with them.
   ContactScale contact_scale() const;
 
-  double skin() const;  // the neighbour-list skin in use [m]
   std::int64_t neighbour_builds() const { return neighbours_.builds(); }
   int step_threads() const { return step_threads_; }  // the threads the last step ran on (parallel_min_particles)
 

@@ -36,7 +36,7 @@ void Particles::reorder(const std::vector<std::size_t>& order) {
   if (void_fraction.size() == order.size()) gather(void_fraction, order);
 }
 
-void Particles::keep_only(const std::vector<bool>& keep) {
+void Particles::keep_only(const Kept& keep) {
   keep_items(id, keep);
   keep_items(x, keep);
   keep_items(v, keep);
@@ -47,7 +47,7 @@ void Particles::keep_only(const std::vector<bool>& keep) {
   keep_items(mass, keep);
   keep_items(material, keep);
   keep_items(fixed, keep);
-  if (void_fraction.size() == keep.size()) keep_items(void_fraction, keep);
+  if (void_fraction.size() == keep.before()) keep_items(void_fraction, keep);
 }
 
 Index Particles::max_id() const { return id.empty() ? -1 : *std::max_element(id.begin(), id.end()); }

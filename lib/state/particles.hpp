@@ -7,6 +7,7 @@
 #include <numbers>
 #include <vector>
 
+#include "core/keep_items.hpp"
 #include "core/types.hpp"
 
 namespace dem {
@@ -71,7 +72,7 @@ struct Particles {
   double inertia(std::size_t k) const { return sphere_inertia(mass[k], radius[k]); }
 
   // Keep the particles for which keep[k] is true, preserving storage order.
-  void keep_only(const std::vector<bool>& keep);
+  void keep_only(const Kept& keep);
   // Storage slot k takes the particle of slot order[k] (order: a permutation of the slots).
   void reorder(const std::vector<std::size_t>& order);
   // The storage slots in the order of the particles' ids: files list particles so, so that no
