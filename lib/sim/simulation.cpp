@@ -239,16 +239,18 @@ bool Simulation::remove_from_lists(const std::vector<char>& gone) {
     for (int& i : list.slot_i) i = slot[i];
     if (pairs)
       for (int& j : list.slot_j) j = slot[j];
+    return place;  // each entry's new position, -1 where gone
   };
   if (!pair_by_key_current_) pair_by_key_.clear();  // sorted again when asked
-  filter(pairs_, pair_by_key_, true);
+  const std::vector<int> pair_place = filter(pairs_, pair_by_key_, true);
   filter(walls_, wall_by_key_, false);
   const Kept stay(keep);
   particles.keep_only(stay);
   neighbours_.keep_only(stay);
   if (fluid_grains_.size() == static_cast<long>(n)) fluid_grains_.keep_only(stay);
   rank_wall_candidates();
-  index_contacts_per_particle();
+  const Renumbering renumbered{slot, pair_place};
+  index_contacts_per_particle(&renumbered);
   count_bonds();
   contacts_modified();
   ledger_work_zeros_ = false;  // the ledger's per-candidate arrays are sized anew
@@ -433,7 +435,7 @@ KeyOrder& Simulation::pair_key_order() const {
   return pair_by_key_;
 }
 
-void Simulation::index_contacts_per_particle() {
+void Simulation::index_contacts_per_particle(const Renumbering* removal) {
   if (params.load_block < 1) throw std::invalid_argument("SimParams::load_block must be at least 1");
   const std::size_t n = particles.size();
   const long npc = static_cast<long>(pairs_.size());
@@ -463,29 +465,9 @@ void Simulation::index_contacts_per_particle() {
     for (long k = block_first_[b]; k < block_first_[b + 1]; ++k)
       ordered = ordered && lower_slot(k) >= b * block && lower_slot(k) < (b + 1) * block;
   if (!ordered) throw std::logic_error("pair candidates not stored along the slots");
-  // Per-particle lists of the pair candidates by which the force loop sums each particle's
-  // contacts (ForceBlocks): first those where it is i, then those where it is j, each run in the
-  // order of the contacts' keys: the same bits for any thread count and any storage order.
-  by_key_start_.assign(n + 1, 0);
-  by_key_split_.assign(n, 0);
-  for (long k = 0; k < npc; ++k) ++by_key_start_[pairs_.slot_i[k] + 1], ++by_key_start_[pairs_.slot_j[k] + 1], ++by_key_split_[pairs_.slot_i[k]];
-  for (std::size_t k = 0; k < n; ++k) by_key_start_[k + 1] += by_key_start_[k], by_key_split_[k] += by_key_start_[k];
-  if (static_cast<std::size_t>(by_key_start_[n]) > by_key_.capacity()) by_key_.reserve(by_key_start_[n]);  // no doubling
-  by_key_.resize(by_key_start_[n]);
-  by_key_fill_.assign(by_key_start_.begin(), by_key_start_.end() - 1);
-  std::vector<int>& j_fill = by_key_fill_j_;
-  j_fill = by_key_split_;
-  for (long k = 0; k < npc; ++k) {
-    by_key_[by_key_fill_[pairs_.slot_i[k]]++] = static_cast<int>(k);
-    by_key_[j_fill[pairs_.slot_j[k]]++] = static_cast<int>(k);
-  }
+  if (removal) keep_contacts_per_particle(*removal);
+  else list_contacts_per_particle();
   const long slots = static_cast<long>(n);
-  const auto before = [&](int a, int b) { return key_before(pairs_, a, b); };
-#pragma omp parallel for schedule(static, 1024)
-  for (long s = 0; s < slots; ++s) {
-    std::sort(by_key_.begin() + by_key_start_[s], by_key_.begin() + by_key_split_[s], before);
-    std::sort(by_key_.begin() + by_key_split_[s], by_key_.begin() + by_key_start_[s + 1], before);
-  }
   // Per block, the first block whose group holds a candidate of its particles (the group of a
   // candidate is the block of its smaller slot: this block or an earlier one).
   block_needs_.resize(blocks);
@@ -515,6 +497,65 @@ void Simulation::index_contacts_per_particle() {
     while (q < runs && slot_of_run(wall_run_order_[q]) < b * block) ++q;
     wall_block_first_[b] = static_cast<int>(q);
   }
+}
+
+void Simulation::list_contacts_per_particle() {
+  const std::size_t n = particles.size();
+  const long npc = static_cast<long>(pairs_.size());
+  const long slots = static_cast<long>(n);
+  // Per-particle lists of the pair candidates by which the force loop sums each particle's
+  // contacts (ForceBlocks): first those where it is i, then those where it is j, each run in the
+  // order of the contacts' keys: the same bits for any thread count and any storage order.
+  by_key_start_.assign(n + 1, 0);
+  by_key_split_.assign(n, 0);
+  for (long k = 0; k < npc; ++k) ++by_key_start_[pairs_.slot_i[k] + 1], ++by_key_start_[pairs_.slot_j[k] + 1], ++by_key_split_[pairs_.slot_i[k]];
+  for (std::size_t k = 0; k < n; ++k) by_key_start_[k + 1] += by_key_start_[k], by_key_split_[k] += by_key_start_[k];
+  if (static_cast<std::size_t>(by_key_start_[n]) > by_key_.capacity()) by_key_.reserve(by_key_start_[n]);  // no doubling
+  by_key_.resize(by_key_start_[n]);
+  by_key_fill_.assign(by_key_start_.begin(), by_key_start_.end() - 1);
+  std::vector<int>& j_fill = by_key_fill_j_;
+  j_fill = by_key_split_;
+  for (long k = 0; k < npc; ++k) {
+    by_key_[by_key_fill_[pairs_.slot_i[k]]++] = static_cast<int>(k);
+    by_key_[j_fill[pairs_.slot_j[k]]++] = static_cast<int>(k);
+  }
+  const auto before = [&](int a, int b) { return key_before(pairs_, a, b); };
+#pragma omp parallel for schedule(static, 1024)
+  for (long s = 0; s < slots; ++s) {
+    std::sort(by_key_.begin() + by_key_start_[s], by_key_.begin() + by_key_split_[s], before);
+    std::sort(by_key_.begin() + by_key_split_[s], by_key_.begin() + by_key_start_[s + 1], before);
+  }
+}
+
+void Simulation::keep_contacts_per_particle(const Renumbering& removal) {
+  // A kept particle's candidates left keep their keys, so their order: its list is its old one
+  // without the removed candidates, renumbered; nothing is sorted again.
+  const std::vector<int>&slot = removal.slot, &place = removal.place;
+  const long old_slots = static_cast<long>(slot.size());
+  const std::size_t n = particles.size();
+  if (by_key_start_.size() != slot.size() + 1 || by_key_.size() != 2 * place.size()) return list_contacts_per_particle();  // not listed for them
+  std::vector<int> start(n + 1, 0), split(n, 0);
+#pragma omp parallel for schedule(static)
+  for (long s = 0; s < old_slots; ++s) {
+    if (slot[s] < 0) continue;
+    int as_i = 0, all = 0;
+    for (int e = by_key_start_[s]; e < by_key_start_[s + 1]; ++e) {
+      const int kept = place[by_key_[e]] >= 0;
+      all += kept, as_i += e < by_key_split_[s] ? kept : 0;
+    }
+    start[slot[s] + 1] = all, split[slot[s]] = as_i;
+  }
+  for (std::size_t k = 0; k < n; ++k) start[k + 1] += start[k];
+  std::vector<int> by_key(start[n]);
+#pragma omp parallel for schedule(static)
+  for (long s = 0; s < old_slots; ++s) {
+    if (slot[s] < 0) continue;
+    int out = start[slot[s]];
+    split[slot[s]] += out;
+    for (int e = by_key_start_[s]; e < by_key_start_[s + 1]; ++e)
+      if (place[by_key_[e]] >= 0) by_key[out++] = place[by_key_[e]];
+  }
+  by_key_start_.swap(start), by_key_split_.swap(split), by_key_.swap(by_key);
 }
 
 MotionStep Simulation::motion_step(bool any_fixed, bool keep_state) {

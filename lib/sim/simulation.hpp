@@ -178,7 +178,17 @@ class Simulation {
   void update_fluid_grains();
   void find_contacts();
   void count_bonds();
-  void index_contacts_per_particle();
+  // How a removal renumbered the particles and the pair candidates (remove_from_lists): each old
+  // slot's new slot and each old candidate's new position, -1 where gone.
+  struct Renumbering {
+    const std::vector<int>& slot;
+    const std::vector<int>& place;
+  };
+  // Each particle's pair candidates in key order (ForceBlocks) and the load blocks' runs of pair
+  // and wall candidates; after a removal, each particle's list is its old one filtered.
+  void index_contacts_per_particle(const Renumbering* removal = nullptr);
+  void list_contacts_per_particle();
+  void keep_contacts_per_particle(const Renumbering& removal);
   // compute_forces(), and with `motion` the step's motion too (ForceBlocks::motion).
   void compute_loads(const MotionStep* motion);
   // Whether the energy check runs (simulation.max_energy_gain), and whether this step is one where
