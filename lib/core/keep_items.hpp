@@ -11,12 +11,15 @@ namespace dem {
 // rather than an item at a time.
 class Kept {
  public:
-  Kept(const std::vector<bool>& keep) : before_(keep.size()) {  // NOLINT: flags convert
+  Kept(const std::vector<bool>& keep) : Kept(keep.size(), [&](std::size_t k) { return keep[k]; }) {}  // NOLINT: flags convert
+  // Items 0 .. n-1, item k kept where stays(k).
+  template <class Stays>
+  Kept(std::size_t n, Stays stays) : before_(n) {
     std::size_t k = 0;
-    while (k < before_) {
-      while (k < before_ && !keep[k]) ++k;
+    while (k < n) {
+      while (k < n && !stays(k)) ++k;
       const std::size_t from = k;
-      while (k < before_ && keep[k]) ++k;
+      while (k < n && stays(k)) ++k;
       if (k > from) runs_.push_back({from, after_, k - from}), after_ += k - from;
     }
   }

@@ -221,21 +221,19 @@ KeyOrder kept_in_key_order(const KeyOrder& by_key, const std::vector<int>& place
 bool Simulation::remove_from_lists(const std::vector<char>& gone) {
   const std::size_t n = particles.size();
   if (!neighbours_.valid_for(n) || gone.size() != n) return false;
-  std::vector<bool> keep(n);
   std::vector<int> slot(n, -1);  // each particle's slot once the others are gone
   int left = 0;
   for (std::size_t k = 0; k < n; ++k)
-    if ((keep[k] = !gone[k])) slot[k] = left++;
+    if (!gone[k]) slot[k] = left++;
   // Each list's entries of particles left, renumbered, in their order: still grouped by the smaller
   // slot in slot order (the renumbering keeps the slots' order), as the force loop reads them.
   const auto filter = [&](ContactList& list, KeyOrder& by_key, bool pairs) {
-    std::vector<bool> kept(list.size());
     std::vector<int> place(list.size(), -1);
     int next = 0;
     for (std::size_t k = 0; k < list.size(); ++k)
-      if (slot[list.slot_i[k]] >= 0 && (!pairs || slot[list.slot_j[k]] >= 0)) kept[k] = true, place[k] = next++;
+      if (slot[list.slot_i[k]] >= 0 && (!pairs || slot[list.slot_j[k]] >= 0)) place[k] = next++;
     by_key = kept_in_key_order(by_key, place);
-    list.keep_only(kept);
+    list.keep_only(Kept(list.size(), [&](std::size_t k) { return place[k] >= 0; }));
     for (int& i : list.slot_i) i = slot[i];
     if (pairs)
       for (int& j : list.slot_j) j = slot[j];
@@ -244,7 +242,7 @@ bool Simulation::remove_from_lists(const std::vector<char>& gone) {
   if (!pair_by_key_current_) pair_by_key_.clear();  // sorted again when asked
   const std::vector<int> pair_place = filter(pairs_, pair_by_key_, true);
   filter(walls_, wall_by_key_, false);
-  const Kept stay(keep);
+  const Kept stay(n, [&](std::size_t k) { return slot[k] >= 0; });
   particles.keep_only(stay);
   neighbours_.keep_only(stay);
   if (fluid_grains_.size() == static_cast<long>(n)) fluid_grains_.keep_only(stay);
@@ -533,7 +531,8 @@ void Simulation::keep_contacts_per_particle(const Renumbering& removal) {
   const std::vector<int>&slot = removal.slot, &place = removal.place;
   const long old_slots = static_cast<long>(slot.size());
   const std::size_t n = particles.size();
-  if (by_key_start_.size() != slot.size() + 1 || by_key_.size() != 2 * place.size()) return list_contacts_per_particle();  // not listed for them
+  if (by_key_start_.size() != slot.size() + 1 || by_key_.size() != 2 * place.size())
+    throw std::logic_error("per-particle lists not built for the candidates before the removal");
   std::vector<int> start(n + 1, 0), split(n, 0);
 #pragma omp parallel for schedule(static)
   for (long s = 0; s < old_slots; ++s) {
