@@ -7,10 +7,14 @@
 
 #include <cmath>
 #include <numbers>
+#include <random>
+#include <vector>
 
 #include "../bench/binary_collision.hpp"
 #include "core/error.hpp"
 #include "run/energy_log.hpp"
+#include "simd/exact_sum.hpp"
+#include "simd/simd.hpp"
 #include "sim/health.hpp"
 #include "sim/simulation.hpp"
 
@@ -349,6 +353,48 @@ TEST(Energy, FixedSumTruncatesEachTermTowardsZeroAt2ToTheMinus90) {
   wide.add(0x1.fffffffffffffp35);  // just under 2^36 J: 126 bits in fixed point
   wide.add(-0x1.ffffffffffffep35);
   EXPECT_EQ(wide.value(), 0x1p-17);
+}
+
+// add_all (the four-wide pass where the loops run so) against adding the terms one by one, to
+// the last unit (FixedSum's ==): terms of every scale from below 2^-90 J to just under the range
+// of 2^36 J, of both signs, zeros; counts on both sides of the pass's 4 x 2,048 terms per round
+// and not multiples of 4; a term out of range or NaN amid them.
+TEST(Energy, AddAllGivesTheBitsOfAddingOneByOne) {
+  std::mt19937_64 random(90);
+  std::uniform_real_distribution<double> exponent(-100.0, 35.9), unit(-1.0, 1.0);
+  std::vector<double> x(20003);
+  for (std::size_t k = 0; k < x.size(); ++k) x[k] = k % 97 == 0 ? 0.0 : unit(random) * std::exp2(exponent(random));
+  x[5] = -0.0, x[6] = 0x1.fffffffffffffp35, x[7] = -0x1.fffffffffffffp35, x[8] = 0x1p-91, x[9] = -0x1.8p-90;
+  // Each lane's terms of one sign near the top of the range, their high parts (2^84 units) all
+  // different, and different between lanes: a lane's sum of 2,048 of them comes within 2^42 of
+  // 2^53 units; one of more would lose odd units (the lanes' losses unlike, so not cancelling).
+  std::vector<double> edge(16384);
+  for (std::size_t k = 0; k < edge.size(); ++k)
+    edge[k] = (k % 4 < 2 ? 1.0 : -1.0) * (0x1.fffffffffffffp35 - static_cast<double>(k / 4 * (k % 4 + 1)) * 0x1p-6);
+  const bool simd_was = simd_loops_on();
+  for (const bool simd : {false, true}) {
+    if (simd && !simd_loops_available()) continue;
+    set_simd_loops(simd);
+    for (const std::vector<double>* terms : {&x, &edge})
+      for (const long n : {0L, 3L, 4L, 1023L, 8192L, 8195L, 16388L, static_cast<long>(terms->size())}) {
+        if (n > static_cast<long>(terms->size())) continue;
+        FixedSum one_by_one, all;
+        for (long k = 0; k < n; ++k) one_by_one.add((*terms)[k]);
+        add_all(all, terms->data(), n);
+        EXPECT_TRUE(all == one_by_one) << "simd " << simd << ", " << n << " terms";
+        if (terms == &x && n > 0) EXPECT_NE(all.value(), 0.0);
+      }
+    for (const double bad : {1e12, -0x1p36, std::nan("")}) {
+      std::vector<double> with_bad(x.begin(), x.begin() + 9000);
+      with_bad[8500] = bad;  // in the second round of 8,192
+      FixedSum one_by_one, all;
+      for (double v : with_bad) one_by_one.add(v);
+      add_all(all, with_bad.data(), static_cast<long>(with_bad.size()));
+      EXPECT_TRUE(all == one_by_one) << "simd " << simd << ", " << bad;
+      EXPECT_THROW(all.value(), PhysicsError);
+    }
+  }
+  set_simd_loops(simd_was);
 }
 
 }  // namespace

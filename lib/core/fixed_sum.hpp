@@ -25,6 +25,13 @@ class FixedSum {
     const std::int64_t high = static_cast<std::int64_t>(y * 0x1p-63);
     sum_ += static_cast<__int128>(high) * (__int128{1} << 63) + static_cast<std::int64_t>(y - static_cast<double>(high) * 0x1p63);
   }
+  // Adds `whole` x 2^shift units, `whole` a whole number held exactly in a double with |whole| <
+  // 2^63: the parts of many terms summed apart (simd/exact_sum.hpp). Modulo 2^128, as unsigned
+  // integers: such a part may lie beyond the range that the whole sum keeps to.
+  void add_whole_units(double whole, int shift) {
+    using Bits = unsigned __int128;
+    sum_ = static_cast<__int128>(static_cast<Bits>(sum_) + (static_cast<Bits>(static_cast<__int128>(static_cast<std::int64_t>(whole))) << shift));
+  }
   void add(const FixedSum& s) {
     sum_ += s.sum_;
     if (s.bad_ != 0) bad_ = s.bad_;
@@ -36,6 +43,8 @@ class FixedSum {
                          "the run has gone unstable (check the time step), or it is too large for the energy log");
     return static_cast<double>(sum_) * 0x1p-90;  // exact: a power of 2, and sum_ is 0 or at least 1
   }
+  // The same sum to the last unit, and the same term out of range (tests).
+  bool operator==(const FixedSum& o) const { return sum_ == o.sum_ && (bad_ == o.bad_ || (bad_ != bad_ && o.bad_ != o.bad_)); }
 
  private:
   __int128 sum_ = 0;

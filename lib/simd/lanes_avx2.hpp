@@ -25,6 +25,12 @@ DEM_AVX2_INLINE Mask4 greater_or_equal(Lanes4 a, Lanes4 b) { return {(lanes::i64
 // Not a <= b: a > b, or either is NaN.
 DEM_AVX2_INLINE Mask4 not_less_or_equal(Lanes4 a, Lanes4 b) { return {(lanes::i64x4)_mm256_cmp_pd(a.v, b.v, _CMP_NLE_UQ)}; }
 
+// Not a < b: a >= b, or either is NaN.
+DEM_AVX2_INLINE Mask4 not_less(Lanes4 a, Lanes4 b) { return {(lanes::i64x4)_mm256_cmp_pd(a.v, b.v, _CMP_NLT_UQ)}; }
+
+// Each lane rounded towards zero to a whole number (std::trunc's, exact): one vroundpd.
+DEM_AVX2_INLINE Lanes4 truncated(Lanes4 a) { return _mm256_round_pd(a.v, _MM_FROUND_TO_ZERO | _MM_FROUND_NO_EXC); }
+
 // vminpd and vmaxpd: a < b ? a : b and a > b ? a : b, lane by lane (b where either is NaN).
 DEM_AVX2_INLINE Lanes4 min(Lanes4 a, Lanes4 b) { return _mm256_min_pd(a.v, b.v); }
 DEM_AVX2_INLINE Lanes4 max(Lanes4 a, Lanes4 b) { return _mm256_max_pd(a.v, b.v); }
