@@ -147,6 +147,7 @@ struct ThreadScratch {
     WallContactsFound found;  // the block's contacts, for the law (wall_law.hpp)
   } walls;
   std::vector<int> broken_pairs, broken_walls;  // the candidates whose bond broke this step (ForceBlocks)
+  WallWorkTerms wall_work;  // a block's wall contacts' terms of the step's work, while the energy log is on
   // A block's contact sums for the ledger and its state before the motion, where only its own
   // particle work reads them (finish_block): in cache, not written to per-slot arrays.
   struct {
@@ -230,12 +231,12 @@ void find_wall_contacts(const ForceLoopInput& in, ContactList& wc, long r, Threa
 
 // The loads of the wall contacts `found` (their law done) added to their particles', in order;
 // with `power`, the walls' power f · v_wall at the contact points added to it; with `work` (the
-// energy log), each contact's part of the step's work (add_wall_contact_work), its forces joining
+// energy log), each contact's terms of the step's work (add_wall_contact_work), its forces joining
 // its particle's sums in `block_work` (the block's, from slot lo on). Returns the largest relative
 // overlap.
 template <class Model>
 double add_wall_loads(const ForceLoopInput& in, ContactList& wc, const WallContactsFound& found, ForceBlocks& out, double* power,
-                      StepWork* work, ParticleWork* block_work, long lo) {
+                      WallWorkTerms* work, ParticleWork* block_work, long lo) {
   const Particles& p = in.particles;
   double worst = 0;
   for (int e = 0; e < found.size(); ++e) {
@@ -393,7 +394,8 @@ double finish_block(const ForceLoopInput& in, const ContactList& pc, ContactList
   wall_law<Model>(with_broken(PairLawArrays(p, wc, true, in.wall_work), scratch.broken_walls), found, in.dt, out.simd, in.any_bonds);
   double power = 0;
   const double worst =
-      add_wall_loads<Model>(in, wc, found, out, out.wall_power ? &power : nullptr, out.step_work ? &work : nullptr, block_work, lo);
+      add_wall_loads<Model>(in, wc, found, out, out.wall_power ? &power : nullptr, out.step_work ? &scratch.wall_work : nullptr, block_work, lo);
+  if (out.step_work) scratch.wall_work.add_to(work);
   if (out.wall_power) out.wall_power[b] = power;
   if (out.body.fluid) out.body.add_fluid(p, lo, hi, out.force.data(), out.simd);
   // The state before the motion, for the particles' work: the ledger's arrays where it reads them
@@ -405,8 +407,11 @@ double finish_block(const ForceLoopInput& in, const ContactList& pc, ContactList
       before = {a.before_x + lo, a.before_v + lo, a.before_w + lo, block_work};
     } else {
       std::vector<Vec3>&x = scratch.block.x, &v = scratch.block.v, &w = scratch.block.w;
-      x.assign(p.x.begin() + lo, p.x.begin() + hi), v.assign(p.v.begin() + lo, p.v.begin() + hi), w.assign(p.w.begin() + lo, p.w.begin() + hi);
-      before = {x.data(), v.data(), w.data(), block_work};
+      const bool fluid = out.particle_work->fluid;  // x^n is read only for the fluid's force
+      x.resize(fluid ? out.block : 0), v.resize(out.block), w.resize(out.block);
+      if (fluid) copy_vectors(p.x.data() + lo, hi - lo, x.data());
+      copy_vectors(p.v.data() + lo, hi - lo, v.data()), copy_vectors(p.w.data() + lo, hi - lo, w.data());
+      before = {fluid ? x.data() : nullptr, v.data(), w.data(), block_work};
     }
   }
   if (out.motion) not_finite = std::max(not_finite, move_particles(out.motion->arrays, out.motion->constants, lo, hi));

@@ -43,4 +43,12 @@ void add_particle_work(const Particles& p, const StepWorkInput& in, const Before
   }
 }
 
+void WallWorkTerms::add_to(StepWork& sums) {
+  add_all(sums.damping, damping.data(), static_cast<long>(damping.size()));
+  add_all(sums.tangential, tangential.data(), static_cast<long>(tangential.size()));
+  add_all(sums.walls, walls.data(), static_cast<long>(walls.size()));
+  add_all(sums.rolling, rolling.data(), static_cast<long>(rolling.size()));
+  damping.clear(), tangential.clear(), walls.clear(), rolling.clear();
+}
+
 }  // namespace dem

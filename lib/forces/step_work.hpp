@@ -6,6 +6,7 @@
 // runs in the force loop, that is done block by block while the block is in cache; otherwise the
 // ledger's pass does it after the motion, with the same function: the same bits either way.
 #include <cstdint>
+#include <vector>
 
 #include "contact/contact_list.hpp"
 #include "contact/kinematics.hpp"
@@ -61,7 +62,7 @@ struct StepWorkInput {
 // entry slot lo's: the ledger's arrays from lo on, or a block's own copies where nothing reads them
 // after the step (the force loop's ThreadScratch: they stay in cache).
 struct BeforeMotion {
-  const Vec3* x;  // x^n
+  const Vec3* x;  // x^n (read only with a fluid: may be null without)
   const Vec3* v;  // v^{n-1/2}
   const Vec3* w;  // w^{n-1/2}
   const ParticleWork* work;
@@ -72,22 +73,32 @@ struct BeforeMotion {
 // v̄ = (v^{n-1/2} + v^{n+1/2})/2, w̄ likewise (docs/physics.md eq. P33-P35, P37, P40-P41).
 void add_particle_work(const Particles& p, const StepWorkInput& in, const BeforeMotion& before, long lo, long hi, StepWork& sums);
 
+// The terms of the work of a block's wall contacts that their walls' motion makes (each an
+// add_wall_contact_work's), added to the step's sums at once (add_to: one pass per term, not a
+// FixedSum add per contact and term). A thread's own, kept with its memory between blocks.
+struct WallWorkTerms {
+  std::vector<double> damping, tangential, walls, rolling;
+  // Adds them all to `sums`, and empties them.
+  void add_to(StepWork& sums);
+};
+
 // A wall contact's part (what its law left: `w`, and its sum `s`, the force f on particle i and
 // n x f_t; its rolling couple M, zero without one; the wall's material at the contact point moving
 // at `v_wall`, spinning at `spin`): its forces join i's ParticleWork, to be taken with v̄_i, and
-// what the wall's own motion makes of them is added to `sums` now: f_d and f_t work on v̄_i - v_wall (eq. P33-P34), the wall puts in f · v_wall (eq. P37);
-// a rolling couple M on i works on w̄_i - spin, the wall's drive puts in M · spin (eq. P41).
+// what the wall's own motion makes of them goes to `terms`: f_d and f_t work on v̄_i - v_wall (eq.
+// P33-P34), the wall puts in f · v_wall (eq. P37); a rolling couple M on i works on w̄_i - spin,
+// the wall's drive puts in M · spin (eq. P41).
 inline void add_wall_contact_work(const ContactWork& w, const ContactSum& s, const Vec3& couple, const Vec3& v_wall,
-                                  const Vec3& spin, double dt, ParticleWork& pw, StepWork& sums) {
+                                  const Vec3& spin, double dt, ParticleWork& pw, WallWorkTerms& terms) {
   pw.damping.v += w.damping;
   pw.tangential.v += w.tangential;
   pw.torque_per_radius.v += s.torque_per_radius;
-  sums.damping.add(-w.damping.dot(v_wall) * dt);
-  sums.tangential.add(-w.tangential.dot(v_wall) * dt);
-  sums.walls.add(s.force.dot(v_wall) * dt);
+  terms.damping.push_back(-w.damping.dot(v_wall) * dt);
+  terms.tangential.push_back(-w.tangential.dot(v_wall) * dt);
+  terms.walls.push_back(s.force.dot(v_wall) * dt);
   if (couple != Vec3::Zero()) {  // only a law with couples makes one: then pw.couple was summed
     pw.couple.v += couple;
-    sums.walls.add(couple.dot(spin) * dt), sums.rolling.add(-couple.dot(spin) * dt);
+    terms.walls.push_back(couple.dot(spin) * dt), terms.rolling.push_back(-couple.dot(spin) * dt);
   }
 }
 

@@ -103,8 +103,11 @@ DEM_AVX2 long move_four_at_a_time(const MotionArrays& a, const MotionConstants& 
 }  // namespace
 
 long move_particles(const MotionArrays& a, const MotionConstants& c, long first, long last) {
-  if (a.before_x)
-    for (long k = first; k < last; ++k) a.before_x[k] = a.x[k], a.before_v[k] = a.v[k], a.before_w[k] = a.w[k];
+  if (a.before_x) {
+    copy_vectors(a.x + first, last - first, a.before_x + first);
+    copy_vectors(a.v + first, last - first, a.before_v + first);
+    copy_vectors(a.w + first, last - first, a.before_w + first);
+  }
 #ifdef DEM_SIMD_LOOPS
   if (simd_loops_on()) return move_four_at_a_time(a, c, first, last);
 #endif
