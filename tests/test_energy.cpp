@@ -356,21 +356,24 @@ TEST(Energy, FixedSumTruncatesEachTermTowardsZeroAt2ToTheMinus90) {
 }
 
 // add_all (the four-wide pass where the loops run so) against adding the terms one by one, to
-// the last unit (FixedSum's ==): terms of every scale from below 2^-90 J to just under the range
-// of 2^36 J, of both signs, zeros; counts on both sides of the pass's 4 x 2,048 terms per round
+// the last unit (FixedSum's ==): terms of every scale from below 2^-90 J to 2^30 J (their sums
+// within the range of 2^37 J), a few just under the range of a term (2^36 J), of both signs, zeros; counts on both sides of the pass's 4 x 2,048 terms per round
 // and not multiples of 4; a term out of range or NaN amid them.
 TEST(Energy, AddAllGivesTheBitsOfAddingOneByOne) {
   std::mt19937_64 random(90);
-  std::uniform_real_distribution<double> exponent(-100.0, 35.9), unit(-1.0, 1.0);
+  std::uniform_real_distribution<double> exponent(-100.0, 30.0), unit(-1.0, 1.0);
   std::vector<double> x(20003);
   for (std::size_t k = 0; k < x.size(); ++k) x[k] = k % 97 == 0 ? 0.0 : unit(random) * std::exp2(exponent(random));
   x[5] = -0.0, x[6] = 0x1.fffffffffffffp35, x[7] = -0x1.fffffffffffffp35, x[8] = 0x1p-91, x[9] = -0x1.8p-90;
   // Each lane's terms of one sign near the top of the range, their high parts (2^84 units) all
   // different, and different between lanes: a lane's sum of 2,048 of them comes within 2^42 of
   // 2^53 units; one of more would lose odd units (the lanes' losses unlike, so not cancelling).
+  // The negative ones a little larger, so that adding them one by one stays within the range.
   std::vector<double> edge(16384);
-  for (std::size_t k = 0; k < edge.size(); ++k)
-    edge[k] = (k % 4 < 2 ? 1.0 : -1.0) * (0x1.fffffffffffffp35 - static_cast<double>(k / 4 * (k % 4 + 1)) * 0x1p-6);
+  for (std::size_t k = 0; k < edge.size(); ++k) {
+    const std::size_t lane = k % 4, step = lane < 2 ? lane + 3 : lane - 1;  // 3, 4 (+); 1, 2 (-)
+    edge[k] = (lane < 2 ? 1.0 : -1.0) * (0x1.fffffffffffffp35 - static_cast<double>(k / 4 * step) * 0x1p-6);
+  }
   const bool simd_was = simd_loops_on();
   for (const bool simd : {false, true}) {
     if (simd && !simd_loops_available()) continue;
