@@ -357,8 +357,9 @@ TEST(Energy, FixedSumTruncatesEachTermTowardsZeroAt2ToTheMinus90) {
 
 // add_all (the four-wide pass where the loops run so) against adding the terms one by one, to
 // the last unit (FixedSum's ==): terms of every scale from below 2^-90 J to 2^30 J (their sums
-// within the range of 2^37 J), a few just under the range of a term (2^36 J), of both signs, zeros; counts on both sides of the pass's 4 x 2,048 terms per round
-// and not multiples of 4; a term out of range or NaN amid them.
+// within the range of 2^37 J), a few just under the range of a term (2^36 J), of both signs,
+// zeros; counts on both sides of the pass's 4 x 2,048 terms a round and not multiples of 4; a
+// term out of range or NaN amid them.
 TEST(Energy, AddAllGivesTheBitsOfAddingOneByOne) {
   std::mt19937_64 random(90);
   std::uniform_real_distribution<double> exponent(-100.0, 30.0), unit(-1.0, 1.0);

@@ -1,7 +1,7 @@
 #pragma once
 // Many terms added to an exact sum (core/fixed_sum.hpp) in one pass, four at a time where the
-// four-wide loops run (simd.hpp): the same bits as adding them one by one, which cost the energy
-// log's per-particle work most of its time (bench/results/design.md).
+// four-wide loops run (simd.hpp): the same bits as adding them one by one, with additions and
+// roundings of doubles in place of a 128-bit add per term (bench/results/design.md).
 #include "core/fixed_sum.hpp"
 
 namespace dem {
