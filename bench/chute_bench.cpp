@@ -3,7 +3,7 @@
 //                                    runs the scene of bench/chute_scene.hpp for STEPS steps and
 //                                    prints one line (bench_report.hpp): loop seconds,
 //                                    particle-steps per second, contacts, energies, peak memory;
-//                                    MODEL linear (default), hertz or hertz-rolling
+//                                    MODEL linear (default), hertz, hertz-rolling, hertz-explicit or hertz-rolling-explicit
 //   chute_bench scaled N STEPS THREADS
 //                                    the same flow on a wider chute of about N spheres (same depth,
 //                                    chute_footprint): the cost per particle-step against N
@@ -52,7 +52,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "chute_bench: %s\n", e.what());
     return 1;
   }
-  std::fprintf(stderr, "usage: chute_bench run STEPS THREADS [linear|hertz|hertz-rolling] | chute_bench scaled N STEPS THREADS | chute_bench lattice N STEPS THREADS | "
+  std::fprintf(stderr, "usage: chute_bench run STEPS THREADS [linear|hertz|hertz-rolling|hertz-explicit|hertz-rolling-explicit] | chute_bench scaled N STEPS THREADS | chute_bench lattice N STEPS THREADS | "
                        "chute_bench lammps-data FILE\n");
   return 2;
 }

@@ -14,14 +14,20 @@
 
 namespace dem::bench {
 
-enum class ContactModel { Linear, Hertz, HertzRolling };
+// The *Explicit models: the same with the explicit dashpot (docs/contact-laws.md eq. D7), the form
+// the peers integrate.
+enum class ContactModel { Linear, Hertz, HertzRolling, HertzExplicit, HertzRollingExplicit };
 
 inline ContactModel contact_model_named(std::string_view name) {
   if (name == "linear") return ContactModel::Linear;
   if (name == "hertz") return ContactModel::Hertz;
   if (name == "hertz-rolling") return ContactModel::HertzRolling;
-  throw std::invalid_argument("contact model must be linear, hertz or hertz-rolling, not " + std::string(name));
+  if (name == "hertz-explicit") return ContactModel::HertzExplicit;
+  if (name == "hertz-rolling-explicit") return ContactModel::HertzRollingExplicit;
+  throw std::invalid_argument("contact model must be linear, hertz, hertz-rolling, hertz-explicit or hertz-rolling-explicit, not " +
+                              std::string(name));
 }
+inline bool with_rolling(ContactModel m) { return m == ContactModel::HertzRolling || m == ContactModel::HertzRollingExplicit; }
 
 // The restitution of damping ratio gamma (the inverse of damping_ratio, eq. P14).
 inline double restitution_of(double gamma) { return std::exp(-std::numbers::pi * gamma / std::sqrt(1 - gamma * gamma)); }
@@ -42,8 +48,9 @@ inline Material hertz_material(const std::string& name, const HertzBead& b, Cont
   m.density = b.density;
   m.law = NormalLaw::Hertz;
   m.tangential = TangentialLaw::Mindlin;
-  m.rolling = model == ContactModel::HertzRolling ? RollingLaw::ElasticPlastic : RollingLaw::None;
-  m.rolling_friction = model == ContactModel::HertzRolling ? b.rolling_friction : 0;
+  m.rolling = with_rolling(model) ? RollingLaw::ElasticPlastic : RollingLaw::None;
+  m.rolling_friction = with_rolling(model) ? b.rolling_friction : 0;
+  m.explicit_dashpot = model == ContactModel::HertzExplicit || model == ContactModel::HertzRollingExplicit;
   m.young_modulus = b.young_modulus;
   m.poisson_ratio = b.poisson_ratio;
   m.friction_angle = std::atan(b.friction) * 180 / std::numbers::pi;

@@ -5,6 +5,8 @@
 //   restitution_table [steps ...]     (default 16 25 50 100 200 500)
 //   restitution_table --hertz [steps ...]   (hertz with Tsuji damping: restitution against eta,
 //                                     duration and peak against the same collision at 2000 steps)
+//   restitution_table --explicit ...  (either, with the explicit dashpot of docs/contact-laws.md
+//                                     eq. D7 in place of D1-D6)
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -17,10 +19,11 @@ using namespace dem;
 using namespace dem::collision;
 
 int main(int argc, char** argv) {
-  bool hertz = false;
+  bool hertz = false, explicit_dashpot = false;
   std::vector<double> steps;
   for (int i = 1; i < argc; ++i) {
     if (!std::strcmp(argv[i], "--hertz")) hertz = true;
+    else if (!std::strcmp(argv[i], "--explicit")) explicit_dashpot = true;
     else steps.push_back(std::atof(argv[i]));
   }
   if (steps.empty()) steps = {16, 25, 50, 100, 200, 500};
@@ -35,6 +38,7 @@ int main(int argc, char** argv) {
         s.law = hertz ? NormalLaw::Hertz : NormalLaw::Cundall;
         s.wall = wall;
         s.eta = eta;
+        s.explicit_dashpot = explicit_dashpot;
         const double m = effective_mass(wall);
         Closed ref{};
         if (hertz) {
@@ -47,6 +51,7 @@ int main(int argc, char** argv) {
           s.t_ref = 2.9432751843247047 * delta / s.v;
           Shot f = s;
           f.steps = 2000;
+          f.explicit_dashpot = false;  // the more accurate of the two
           const Result fine = collide(f);
           ref = {fine.duration, fine.peak_overlap, eta};
         } else {

@@ -9,8 +9,10 @@
 # MODELS: "linear" (default: the scenes' linear spring-dashpot, inputs bench/peers/in.SCENE.CODE) or
 #   any of "hertz hertz-rolling" (Hertz-Mindlin, alone or with EPSD2 / sds rolling resistance:
 #   bench/hertz_models.hpp, inputs bench/peers/in.SCENE_hertz.CODE -var rolling 0|1), written to
-#   bench/results/peers_hertz_runs.csv and peers_hertz.md instead, e.g.
-#   bash bench/run_peer_bench.sh 3 "settle:10000:20000 chute:32000:2000" "hertz hertz-rolling"
+#   bench/results/peers_hertz_runs.csv and peers_hertz.md instead; "hertz-explicit" and
+#   "hertz-rolling-explicit" run ours alone with the explicit dashpot (docs/contact-laws.md eq. D7,
+#   the peers' form), compared with the peers' runs of the model without the suffix, e.g.
+#   bash bench/run_peer_bench.sh 3 "settle:10000:20000 chute:32000:2000" "hertz hertz-rolling hertz-explicit hertz-rolling-explicit"
 # One process or thread runs pinned to CPU $PIN_CPU (default 0) for every code: on a VM whose
 #   cores differ (bench/results/peers_hertz.md, "The machine's two cores"), a run left to the scheduler
 #   lands on either and its time says which as much as which code it was.
@@ -71,6 +73,7 @@ for spec in $scenes; do
     for np in 1 2; do
       for model in $models; do
         for code in dem lammps liggghts; do
+          [ "$code" != dem ] && [[ $model == *-explicit ]] && continue  # the peers' dashpot is explicit already
           read -r loop rss < <(run_one "$code" "$np" "$scene" "$n" "$steps" "$model")
           psps=$(awk -v n="$n" -v s="$steps" -v t="$loop" 'BEGIN {printf "%.4g", n * s / t}')
           echo "$label,$code,$np,$n,$steps,$loop,$psps,$rss,$rep,$today,$model" | tee -a "$csv.tmp"

@@ -3,8 +3,9 @@
 //                                         runs the scene of bench/settle_scene.hpp for STEPS steps and
 //                                         prints one line: N, steps, threads, loop seconds,
 //                                         particle-steps per second, contacts, kinetic energies,
-//                                         peak resident memory; MODEL linear (default), hertz or
-//                                         hertz-rolling (settle_scene.hpp, hertz_models.hpp)
+//                                         peak resident memory; MODEL linear (default), hertz,
+//                                         hertz-rolling, or either with -explicit (the explicit
+//                                         dashpot) (settle_scene.hpp, hertz_models.hpp)
 //   settle_bench mesh N STEPS THREADS T   the same with the floor made of about T triangles (a
 //                                         rectangle mesh, as an STL floor would be): the price of a
 //                                         fine mesh wall against one plane
@@ -122,7 +123,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "settle_bench: %s\n", e.what());
     return 1;
   }
-  std::fprintf(stderr, "usage: settle_bench run N STEPS THREADS [linear|hertz|hertz-rolling] | settle_bench mesh N STEPS THREADS TRIANGLES | "
+  std::fprintf(stderr, "usage: settle_bench run N STEPS THREADS [linear|hertz|hertz-rolling|hertz-explicit|hertz-rolling-explicit] | settle_bench mesh N STEPS THREADS TRIANGLES | "
                        "settle_bench series N STEPS EVERY SEED hertz|hertz-rolling [FRICTION ROLLING_FRICTION] | settle_bench lammps-data N FILE [SEED]\n");
   return 2;
 }

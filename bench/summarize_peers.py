@@ -96,7 +96,7 @@ def hertz(rows):
     print(f"Written {datetime.date.today()} on {os.cpu_count()} cores ({cpu}); each scene's runs in one session, interleaved;")
     print(f"{dem} (OpenMP threads); Debian {versions.rstrip('; ')} (MPI processes).")
     print(PINNED)
-    print("Reproduce: `bash bench/run_peer_bench.sh 3 \"settle:10000:20000 chute:32000:2000\" \"hertz hertz-rolling\"`")
+    print("Reproduce: `bash bench/run_peer_bench.sh 3 \"settle:10000:20000 chute:32000:2000\" \"hertz hertz-rolling hertz-explicit hertz-rolling-explicit\"`")
     print("(every run in `bench/results/peers_hertz_runs.csv`). The models, the material values and how each")
     print("code is told the same physics: the notes below the tables (and `bench/hertz_models.hpp`,")
     print("`bench/peers/in.*_hertz.*`). PSPS = particles x steps / loop time (median of the runs, setup")
@@ -132,6 +132,35 @@ def hertz(rows):
                     a, b = runs.get((scene, "hertz", code, procs)), runs.get((scene, "hertz-rolling", code, procs))
                     cells.append(f"{statistics.median(b) / statistics.median(a) - 1:+.1%}" if a and b else "")
                 print(f"| {scene} | {procs} | " + " | ".join(cells) + " |")
+    explicit = [m for m in ("hertz-explicit", "hertz-rolling-explicit") if any(k[1] == m for k in runs)]
+    if explicit:
+        print("\nOurs with the explicit dashpot (`explicit_dashpot = true`, docs/contact-laws.md eq. D7: the dashpot as")
+        print("LIGGGHTS and LAMMPS integrate it, its restitution first order in the step), against the same session's")
+        print("peer rows of the model without the suffix (the peers' inputs do not change), and against ours with the")
+        print("dashpot through the step (eq. D1-D6, the rows above):\n")
+        print("| scene | model | procs | runs | loop s (median, range) | PSPS | / LIGGGHTS (target 2x) | / LAMMPS (target 1.5x) | against D1-D6 |")
+        print("|---|---|---|---|---|---|---|---|---|")
+        for scene in sorted({k[0] for k in runs}, key=lambda s: meta[s][0]):
+            n, steps = meta[scene]
+            for procs in sorted({k[3] for k in runs if k[0] == scene}):
+                for model in explicit:
+                    t = runs.get((scene, model, "dem", procs))
+                    if not t:
+                        continue
+                    med = statistics.median(t)
+                    base = model[:-len("-explicit")]
+                    cells = []
+                    for code in ("liggghts", "lammps"):
+                        peer = runs.get((scene, base, code, procs))
+                        if not peer:
+                            cells.append("")
+                            continue
+                        r = statistics.median(peer) / med
+                        cells.append(f"{r:.2f}x: " + ("met" if r >= TARGETS[code] else f"missed ({r / TARGETS[code] - 1:+.0%})"))
+                    ours = runs.get((scene, base, "dem", procs))
+                    against = f"{med / statistics.median(ours) - 1:+.1%}" if ours else ""
+                    print(f"| {scene} | {model} | {procs} | {len(t)} | {med:.2f} ({min(t):.2f}-{max(t):.2f}) | {n * steps / med:.3g} | "
+                          + " | ".join(cells) + f" | {against} |")
     print(HERTZ_NOTES)
 
 

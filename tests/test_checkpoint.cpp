@@ -277,6 +277,35 @@ TEST_F(CheckpointTest, SchemaThreeIsReadWithCoulombSprings) {
   EXPECT_EQ(s.materials.pair(0, 1).mu, std::tan(33 * (M_PI / 180))) << "the pair's own angle";
 }
 
+// The explicit dashpot (a material's flag and a pair's) comes back; a file written before the flag
+// existed (its datasets deleted here) reads with it off, as that build ran.
+TEST_F(CheckpointTest, ExplicitDashpotRoundTripsAndIsOffInOlderFiles) {
+  std::vector<Material> mats = sim_.materials.materials();
+  mats[1].explicit_dashpot = true;
+  PairOverride pair;
+  pair.b = 0, pair.set("explicit_dashpot", 1);  // glass with itself
+  sim_.materials = MaterialTable(mats, {}, {pair});
+  write_checkpoint(path_, sim_, meta_);
+  {
+    Simulation s;
+    CheckpointMeta m;
+    read_checkpoint(path_, s, m);
+    EXPECT_FALSE(s.materials.materials()[0].explicit_dashpot);
+    EXPECT_TRUE(s.materials.materials()[1].explicit_dashpot);
+    EXPECT_TRUE(s.materials.pair(0, 0).explicit_dashpot) << "the pair's own";
+    EXPECT_TRUE(s.materials.pair(0, 1).explicit_dashpot) << "either material's";
+    EXPECT_TRUE(s.materials.pair(1, 1).explicit_dashpot);
+  }
+  set_schema_version(path_, 4, "/materials/explicit_dashpot");
+  set_schema_version(path_, 4, "/pairs/explicit_dashpot");
+  reseal(path_);
+  Simulation s;
+  CheckpointMeta m;
+  read_checkpoint(path_, s, m);
+  for (int a = 0; a < 2; ++a)
+    for (int b = 0; b < 2; ++b) EXPECT_FALSE(s.materials.pair(a, b).explicit_dashpot) << a << " " << b;
+}
+
 // Tangential and rolling laws, a material's and a pair's, come back with the constants they
 // derive, and so does the rolling history of each contact.
 TEST_F(CheckpointTest, TangentialAndRollingLawsRoundTrip) {

@@ -65,6 +65,22 @@ TEST(SceneParser, RestitutionZeroIsCriticalDamping) {
   EXPECT_EQ(t.pair(0, 0).gamma_n, 1.0);
 }
 
+// explicit_dashpot (docs/contact-laws.md eq. D7) is off unless asked; asked by a material it holds
+// for that material's pairs, and a [[pair]] may ask it for itself.
+TEST(SceneParser, ExplicitDashpotParses) {
+  EXPECT_FALSE(parse_scene(kValid, "scene.toml").materials[0].explicit_dashpot);
+  const std::string two = replace(kValid, "[[wall]]", "[[material]]\nname = \"steel\"\ndensity = 7800.0\nkn = 1e5\nexplicit_dashpot = true\n\n"
+                                                     "[[pair]]\nmaterials = [\"glass\", \"glass\"]\nexplicit_dashpot = true\n\n[[wall]]");
+  const Scene s = parse_scene(two, "scene.toml");
+  EXPECT_FALSE(s.materials[0].explicit_dashpot);
+  EXPECT_TRUE(s.materials[1].explicit_dashpot);
+  const MaterialTable t(s.materials, s.mixing, s.pairs);
+  EXPECT_TRUE(t.pair(0, 0).explicit_dashpot) << "the pair's own";
+  EXPECT_TRUE(t.pair(0, 1).explicit_dashpot) << "either material's";
+  const Scene plain = parse_scene(replace(two, "materials = [\"glass\", \"glass\"]\nexplicit_dashpot = true", "materials = [\"glass\", \"glass\"]"), "scene.toml");
+  EXPECT_FALSE(MaterialTable(plain.materials, plain.mixing, plain.pairs).pair(0, 0).explicit_dashpot);
+}
+
 // A hertz material reads its own keys (young_modulus, poisson_ratio), kt without a default (there
 // is no kn to take it from), and its pair constants follow eq. H2 (by hand).
 TEST(SceneParser, HertzMaterialParses) {
@@ -268,6 +284,8 @@ std::vector<BadCase> bad_cases() {
        {"stage[0].action[0].region", "unknown key"}},
       {"boolean expected", replace(kValid, "gravity = [0.0, 0.0, -9.81]", "gravity = [0.0, 0.0, -9.81]\nforce_time_step = 1"),
        {"simulation.force_time_step = 1", "expected true or false"}},
+      {"explicit_dashpot not a boolean", replace(kValid, "density = 2500.0", "density = 2500.0\nexplicit_dashpot = 1"),
+       {"material[0].explicit_dashpot = 1", "expected true or false"}},
       {"table not starting at 0", kValid + "\n[[stage.motion]]\nwall = \"box.zmax\"\ntype = \"table\"\ntable = [[0.1, 0, 0, 0], [0.2, 0, 0, 1]]\n",
        {"stage[0].motion[1].table", "first row must be at t = 0"}},
       {"table times not increasing", kValid + "\n[[stage.motion]]\nwall = \"box.zmax\"\ntype = \"table\"\ntable = [[0, 0, 0, 0], [0.2, 0, 0, 1], [0.2, 0, 0, 2]]\n",

@@ -40,10 +40,12 @@ struct ViscousDamping {
   static constexpr PropertyKey keys[] = {
       {.keyword = "restitution", .number = &ContactProperties::restitution, .lo = 0, .hi = 1,
        .unit = "(eta_n, docs/physics.md eq. P14; 0: critical damping)", .si_unit = "1", .mixing = &MixingRules::restitution, .default_value = 1},
-      {.keyword = "no_viscous_attraction", .flag = &ContactProperties::no_viscous_attraction}};
+      {.keyword = "no_viscous_attraction", .flag = &ContactProperties::no_viscous_attraction},
+      {.keyword = "explicit_dashpot", .flag = &ContactProperties::explicit_dashpot, .absent_means_off = true}};
   static void derive(PairParams& p, const PairProperties& pair) {
     const ContactProperties& q = pair.mixed;
     p.no_viscous_attraction = q.no_viscous_attraction;
+    p.explicit_dashpot = q.explicit_dashpot;
     p.gamma_n = damping_ratio(q.restitution);
     p.damping_n = 2.0 * p.gamma_n * std::sqrt(p.kn);
   }
@@ -157,5 +159,19 @@ template <class D, class P, class L, class M>
     return select(parts, zero - g_before, impulse) * L(1.0 / dt);
   }
 }
+
+// A damping sub-model D with the explicit dashpot of LIGGGHTS and LAMMPS in place of D1-D6: c_n(u)
+// at this step's overlap times the last half step's relative normal velocity (docs/contact-laws.md
+// eq. D7), first order in dt; it keeps no mark (left 0). The contact law takes a damping's own
+// `force` where it has one (contact/contact_law.hpp).
+template <class D>
+struct ExplicitDashpot : D {
+  template <class P, class L, class M>
+  [[gnu::always_inline]] static L force(const P& p, const LaneKinematics<L>& k, const L& vn, const L& /*f_el*/, double /*dt*/,
+                                        const M& /*bonded*/, L& mark) {
+    mark = L(0.0);
+    return L(0.0) - D::coefficient(p, k) * vn;  // eq. D7, > 0 repulsive
+  }
+};
 
 }  // namespace dem

@@ -121,11 +121,14 @@ struct MixedDamping {
   static double coefficient(const PairParams& p, const LaneKinematics<double>& c) {
     return with_normal_law(p.law, [&](auto law) { return decltype(law)::Damping::coefficient(p, c); });
   }
-  // The pair's dashpot over the step (damping.hpp's dashpot_force with its damping).
+  // The pair's dashpot over the step (damping.hpp's dashpot_force with its damping), or its
+  // explicit form where the pair asks for it (ExplicitDashpot).
   static double force(const PairParams& p, const LaneKinematics<double>& c, double vn, double f_el, double dt, bool bonded,
                       double& mark) {
     return with_normal_law(p.law, [&](auto law) {
-      return dashpot_force<typename decltype(law)::Damping>(p, c, vn, f_el, dt, bonded, mark);
+      using D = typename decltype(law)::Damping;
+      return p.explicit_dashpot ? ExplicitDashpot<D>::force(p, c, vn, f_el, dt, bonded, mark)
+                                : dashpot_force<D>(p, c, vn, f_el, dt, bonded, mark);
     });
   }
 };
@@ -169,7 +172,15 @@ struct ModelChoice {
   NormalLaw normal = NormalLaw::Cundall;
   TangentialLaw tangential = TangentialLaw::Coulomb;
   RollingLaw rolling = RollingLaw::None;
+  bool explicit_dashpot = false;  // the normal law's damping in its explicit form (ExplicitDashpot)
   bool operator==(const ModelChoice&) const = default;
+};
+
+// Normal law N with its damping in the explicit form (docs/contact-laws.md eq. D7): what the force
+// loop compiles for a scene whose pairs all ask for explicit_dashpot.
+template <class N>
+struct WithExplicitDashpot : N {
+  using Damping = ExplicitDashpot<typename N::Damping>;
 };
 
 // The damping model of a pair: its normal law's.

@@ -34,6 +34,7 @@ struct PairParams {
   double tensile_strength = 0;  // F [N]
   double cohesion = 0;          // C [N]
   bool no_viscous_attraction = false;
+  bool explicit_dashpot = false;  // eq. D7 (LIGGGHTS's and LAMMPS's form) in place of D1-D6
   // mendes law (eq. 2.23-2.24 with SPEC's signs): T(s) = kn [D (1 - exp(-A s)) - s] for s < s0.
   bool mendes_tension = false;  // false for epsilon >= 1/e: no tension at all
   double mendes_D = 0, mendes_A = 0;

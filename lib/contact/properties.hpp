@@ -43,6 +43,7 @@ struct ContactProperties {
   double poisson_ratio = 0;     // nu (hertz)
   double rolling_friction = 0;  // mu_r (cdt, epsd2)
   bool no_viscous_attraction = false;  // clip the total normal force of unbonded contacts at zero
+  bool explicit_dashpot = false;       // the dashpot at the step's velocity (docs/contact-laws.md eq. D7), not through the step
 };
 
 // What a material pair's constants derive from: each property mixed (by its key's rule, or the
@@ -69,6 +70,9 @@ struct PropertyKey {
   bool required = false;
   std::string_view default_key{};
   double default_value = 0;
+  // A flag checkpoints hold only since it was added (within their schema 4): a file without it was
+  // written by a build that had it off, and reads so.
+  bool absent_means_off = false;
 };
 
 // The elastic constants of a material, read by the laws of elastic spheres (hertz, mindlin), which

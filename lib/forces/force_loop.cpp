@@ -65,6 +65,7 @@ std::string variant_name(ForceVariant v) {
   std::string name(normal_law_name(v->normal));
   if (v->tangential != TangentialLaw::Coulomb) name += " + " + std::string(tangential_law_name(v->tangential));
   if (v->rolling != RollingLaw::None) name += " + " + std::string(rolling_law_name(v->rolling));
+  if (v->explicit_dashpot) name += " (explicit dashpot)";
   return name;
 }
 

@@ -15,11 +15,16 @@ using ForceLoopFn = double (*)(const ForceLoopInput&, ContactList& pairs, Contac
 
 // The combinations compiled as a force loop of their own (each one a full instantiation: compile
 // time and code size); any other runs the per-contact choice ("mixed"). Every hertz combination;
-// cundall with the linear spring and any rolling law; the bonded laws as the thesis has them.
+// cundall with the linear spring and any rolling law; the bonded laws as the thesis has them; with
+// the explicit dashpot (WithExplicitDashpot), the peers' usual models: Hertz-Mindlin with any
+// rolling law, cundall with the linear spring alone.
 template <class Normal, class Tangential, class Rolling>
 constexpr bool kCompiled =
     std::is_same_v<Normal, HertzNormal> ||
-    (std::is_same_v<Tangential, CoulombSpring> && (std::is_same_v<Normal, CundallNormal> || std::is_same_v<Rolling, NoRolling>));
+    (std::is_same_v<Tangential, CoulombSpring> && (std::is_same_v<Normal, CundallNormal> || std::is_same_v<Rolling, NoRolling>)) ||
+    (std::is_same_v<Normal, WithExplicitDashpot<HertzNormal>> && std::is_same_v<Tangential, MindlinSpring>) ||
+    (std::is_same_v<Normal, WithExplicitDashpot<CundallNormal>> && std::is_same_v<Tangential, CoulombSpring> &&
+     std::is_same_v<Rolling, NoRolling>);
 
 using MixedModel = ContactModel<MixedNormal, MixedTangential, MixedRolling>;
 
@@ -32,6 +37,11 @@ decltype(auto) with_compiled_model(ModelChoice m, F&& f) {
         using N = std::remove_cvref_t<decltype(normal)>;
         using T = std::remove_cvref_t<decltype(tangential)>;
         using R = std::remove_cvref_t<decltype(rolling)>;
+        using E = WithExplicitDashpot<N>;
+        if (m.explicit_dashpot) {
+          if constexpr (kCompiled<E, T, R>) return f(ContactModel<E, T, R>{});
+          else return f(MixedModel{});
+        }
         if constexpr (kCompiled<N, T, R>) return f(ContactModel<N, T, R>{});
         else return f(MixedModel{});
       });
@@ -49,10 +59,11 @@ ForceLoopFn cundall_force_loop(ModelChoice m);        // force_loop_cundall.cpp
 ForceLoopFn bonded_force_loop(ModelChoice m);         // force_loop_bonded.cpp: liu, mendes
 ForceLoopFn hertz_force_loop(ModelChoice m);          // force_loop_hertz.cpp: hertz with coulomb
 ForceLoopFn hertz_mindlin_force_loop(ModelChoice m);  // force_loop_hertz_mindlin.cpp
+ForceLoopFn explicit_dashpot_force_loop(ModelChoice m);  // force_loop_explicit_dashpot.cpp
 ForceLoopFn mixed_force_loop();                       // force_loop_mixed.cpp: MixedModel
 // The units of the compiled combinations, asked in turn (compute_contact_forces).
 inline constexpr ForceLoopFn (*kForceLoopUnits[])(ModelChoice) = {cundall_force_loop, bonded_force_loop, hertz_force_loop,
-                                                                   hertz_mindlin_force_loop};
+                                                                   hertz_mindlin_force_loop, explicit_dashpot_force_loop};
 
 // set_lagging_thread_for_tests (force_loop.hpp): set between steps, read by the loops' threads.
 struct LaggingThread {

@@ -484,6 +484,13 @@ void particle_datasets(Io& io, P& p, A& a) {
   if (io.has("/particles/fixed")) io.uint8s("/particles/fixed", p.fixed, n);  // added within schema 2
 }
 
+// A flag a file does not hold (PropertyKey::absent_means_off), read as `value` in each of n rows;
+// a writer (const arrays) holds them all.
+template <class V>
+void fill_absent(V& flags, long n, int value) {
+  if constexpr (!std::is_const_v<V>) flags.assign(n, value);
+}
+
 // Each contact property under its scene keyword (the models' keys, contact/model_table.hpp).
 template <class Io, class A>
 void material_datasets(Io& io, A& a) {
@@ -494,7 +501,8 @@ void material_datasets(Io& io, A& a) {
   const std::vector<PropertyKey> keys = all_property_keys();
   for (std::size_t k = 0; k < keys.size(); ++k) {
     const std::string name = "/materials/" + std::string(keys[k].keyword);
-    if (keys[k].flag) io.int32s(name.c_str(), a.flag[k], m);
+    if (keys[k].flag && keys[k].absent_means_off && !io.has(name.c_str())) fill_absent(a.flag[k], m, 0);
+    else if (keys[k].flag) io.int32s(name.c_str(), a.flag[k], m);
     else io.doubles(name.c_str(), a.number[k], std::string(keys[k].si_unit).c_str(), m);
   }
   io.int32s("/materials/law", a.law, m);
@@ -515,7 +523,8 @@ void pair_datasets(Io& io, A& a) {
   const std::vector<PropertyKey> keys = all_property_keys();
   for (std::size_t k = 0; k < keys.size(); ++k) {
     const std::string name = "/pairs/" + std::string(keys[k].keyword);
-    if (keys[k].flag) io.int32s(name.c_str(), a.flag[k], rows);
+    if (keys[k].flag && keys[k].absent_means_off && !io.has(name.c_str())) fill_absent(a.flag[k], rows, -1);  // not given
+    else if (keys[k].flag) io.int32s(name.c_str(), a.flag[k], rows);
     else io.doubles(name.c_str(), a.number[k], std::string(keys[k].si_unit).c_str(), rows);
   }
 }

@@ -74,7 +74,9 @@ double MaterialTable::max_break_separation() const {
 
 std::optional<ModelChoice> MaterialTable::common_models(bool bonds) const {
   if (pairs_.empty()) return ModelChoice{};
-  const auto models = [&](const PairParams& p) { return ModelChoice{bonds ? p.law : law_without_bonds(p.law), p.tangential, p.rolling}; };
+  const auto models = [&](const PairParams& p) {
+    return ModelChoice{bonds ? p.law : law_without_bonds(p.law), p.tangential, p.rolling, p.explicit_dashpot};
+  };
   for (const PairParams& p : pairs_)
     if (!(models(p) == models(pairs_[0]))) return std::nullopt;
   return models(pairs_[0]);
