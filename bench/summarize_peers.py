@@ -79,6 +79,11 @@ TARGETS = {"liggghts": 2.0, "lammps": 1.5}  # issue 31: at least 2x LIGGGHTS, 1.
 NAMES = {"dem": "dem (ours)", "lammps": "LAMMPS", "liggghts": "LIGGGHTS"}
 
 
+def verdict(ratio, code):
+    """Issue 31's target against `code` for our speed ratio: met, or missed by how much."""
+    return "met" if ratio >= TARGETS[code] else f"missed ({ratio / TARGETS[code] - 1:+.1%})"
+
+
 def hertz(rows):
     """The Hertz-Mindlin table (peers_hertz_runs.csv): medians, our ratio against each peer with
     issue 31's target, and each code's rolling resistance cost over Hertz alone."""
@@ -118,7 +123,7 @@ def hertz(rows):
                     if code != "dem" and ours:
                         r = med / statistics.median(ours)
                         ratio = f"{r:.2f}x"
-                        target = f"{TARGETS[code]}x: " + ("met" if r >= TARGETS[code] else f"missed ({r / TARGETS[code] - 1:+.1%})")
+                        target = f"{TARGETS[code]}x: " + verdict(r, code)
                     print(f"| {scene} | {model} | {', '.join(sorted(dates[scene]))} | {steps} | {procs} | {NAMES[code]} | {len(t)} | "
                           f"{med:.2f} ({min(t):.2f}-{max(t):.2f}) | {n * steps / med:.3g} | {ratio} | {target} | {max(rss[(scene, model, code, procs)]) / 1024:.0f} |")
     if len(models) == 2:
@@ -156,7 +161,7 @@ def hertz(rows):
                             cells.append("")
                             continue
                         r = statistics.median(peer) / med
-                        cells.append(f"{r:.2f}x: " + ("met" if r >= TARGETS[code] else f"missed ({r / TARGETS[code] - 1:+.1%})"))
+                        cells.append(f"{r:.2f}x: " + verdict(r, code))
                     ours = runs.get((scene, base, "dem", procs))
                     against = f"{med / statistics.median(ours) - 1:+.1%}" if ours else ""
                     print(f"| {scene} | {model} | {procs} | {len(t)} | {med:.2f} ({min(t):.2f}-{max(t):.2f}) | {n * steps / med:.3g} | "
