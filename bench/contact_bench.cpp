@@ -4,7 +4,7 @@
 //                              simulated second of a 10,000-sphere settling scene
 //   contact_bench variants     the price of each physics option on one packing: plain linear
 //                              contact, walls, adhesion law with bonds (liu, mendes), mixed laws,
-//                              hertz, mindlin, rolling resistance
+//                              hertz, mindlin, rolling resistance, the explicit dashpot
 //   contact_bench law-price LAWS  one contact model on a dense packing (8,000 spheres on a
 //                              periodic lattice, each pressed by six neighbours), 100 steps on one
 //                              thread: LAWS is normal[+tangential[+rolling]], e.g. hertz+mindlin+cdt.
@@ -117,6 +117,7 @@ void variants() {
     bool extra_walls, bonds;
     TangentialLaw tangential = TangentialLaw::Coulomb;
     RollingLaw rolling = RollingLaw::None;
+    bool explicit_dashpot = false;  // docs/contact-laws.md eq. D7
   };
   const Case cases[] = {{"cundall, 6 walls", NormalLaw::Cundall, false, false},
                         {"cundall, 6 more walls far away (no contacts)", NormalLaw::Cundall, true, false},
@@ -128,7 +129,9 @@ void variants() {
                         {"hertz, linear tangential spring", NormalLaw::Hertz, false, false},
                         {"hertz + mindlin", NormalLaw::Hertz, false, false, TangentialLaw::Mindlin},
                         {"hertz + mindlin + cdt", NormalLaw::Hertz, false, false, TangentialLaw::Mindlin, RollingLaw::ConstantTorque},
-                        {"hertz + mindlin + epsd2", NormalLaw::Hertz, false, false, TangentialLaw::Mindlin, RollingLaw::ElasticPlastic}};
+                        {"hertz + mindlin + epsd2", NormalLaw::Hertz, false, false, TangentialLaw::Mindlin, RollingLaw::ElasticPlastic},
+                        {"cundall, explicit dashpot", NormalLaw::Cundall, false, false, TangentialLaw::Coulomb, RollingLaw::None, true},
+                        {"hertz + mindlin, explicit dashpot", NormalLaw::Hertz, false, false, TangentialLaw::Mindlin, RollingLaw::None, true}};
   for (const Case& c : cases) {
     double ns[2];
     std::size_t contacts = 0;
@@ -142,6 +145,7 @@ void variants() {
       m.tangential = c.tangential;
       m.rolling = c.rolling;
       m.rolling_friction = 0.1;
+      m.explicit_dashpot = c.explicit_dashpot;
       // Hertz as stiff as kn = 2000 N/m where a bead carries its weight (u ~ 5e-8 m).
       m.young_modulus = 5e8;
       m.poisson_ratio = 0.3;
