@@ -253,7 +253,10 @@ TEST(SimdLoops, HertzMindlinAndRollingLawsEndARunWithThePlainLoopsBits) {
       if (hertz || rolling != RollingLaw::None) cases.push_back({hertz, rolling, 0});  // cundall alone: LawEndsARunWithThePlainLoopsBits
   cases.push_back({true, RollingLaw::None, 2});
   cases.push_back({true, RollingLaw::None, 1});
-  for (const auto& [hertz, rolling, explicit_materials] : cases) {
+  for (const Case& c : cases) {
+    const bool hertz = c.hertz;  // plain names, not structured bindings: the scene's lambda captures them
+    const RollingLaw rolling = c.rolling;
+    const int explicit_materials = c.explicit_materials;
     auto scene = [&]() {
       Simulation sim = law_scene(1.22);
       std::vector<Material> m = sim.materials.materials();
