@@ -483,12 +483,14 @@ TEST(LiuBond, SimulationCarriesTensionUpToStrengthThenBreaks) {
 // Every combination of sub-models the force loop compiles (kCompiled) is compiled by exactly one
 // of the force_loop_<law>.cpp units, and any other by none (it runs the mixed loop): a law added to
 // kCompiled without a unit, or compiled by two, fails here rather than at a user's first step.
+// Each combination with either form of the dashpot (ModelChoice::explicit_dashpot).
 TEST(ForceLoop, EachCompiledCombinationHasOneUnit) {
   int compiled_count = 0;
+  for (const bool explicit_dashpot : {false, true})
   for (int n = 0; n < kNormalLaws; ++n)
     for (int t = 0; t < kTangentialLaws; ++t)
       for (int r = 0; r < kRollingLaws; ++r) {
-        const ModelChoice m{static_cast<NormalLaw>(n), static_cast<TangentialLaw>(t), static_cast<RollingLaw>(r)};
+        const ModelChoice m{static_cast<NormalLaw>(n), static_cast<TangentialLaw>(t), static_cast<RollingLaw>(r), explicit_dashpot};
         const bool compiled = is_compiled(m);
         int units = 0;
         for (const auto unit : kForceLoopUnits)
@@ -497,8 +499,50 @@ TEST(ForceLoop, EachCompiledCombinationHasOneUnit) {
         compiled_count += compiled;
       }
   EXPECT_GT(compiled_count, 0);
-  EXPECT_LT(compiled_count, kNormalLaws * kTangentialLaws * kRollingLaws) << "some combination runs the mixed loop";
+  EXPECT_LT(compiled_count, 2 * kNormalLaws * kTangentialLaws * kRollingLaws) << "some combination runs the mixed loop";
+  EXPECT_TRUE(is_compiled({NormalLaw::Hertz, TangentialLaw::Mindlin, RollingLaw::ElasticPlastic, true})) << "LIGGGHTS's usual model";
   EXPECT_NE(mixed_force_loop(), nullptr);
+}
+
+// A scene whose pairs differ in the form of their dashpot runs the per-contact loop, which takes
+// each pair's own (docs/contact-laws.md eq. D1-D6 or D7): for a pair that asks for the explicit
+// dashpot it gives the bits of the loop compiled for it, for one that does not those of the
+// default's, on a contact of some history (a mark left by the last step), loading and unloading.
+TEST(ForceLoop, PerContactLoopTakesEachPairsDashpot) {
+  Material a, b;
+  a.name = "a", b.name = "b";
+  for (Material* m : {&a, &b}) {
+    m->law = NormalLaw::Hertz, m->tangential = TangentialLaw::Mindlin;
+    m->young_modulus = 5e7, m->poisson_ratio = 0.3, m->restitution = 0.3, m->friction_angle = 20;
+  }
+  a.explicit_dashpot = true;
+  const MaterialTable table({a, b}, {});
+  EXPECT_FALSE(choose_force_variant(table, false)) << "pairs of both forms: the per-contact loop";
+  using Explicit = ContactModel<WithExplicitDashpot<HertzNormal>, MindlinSpring>;
+  using Integrated = ContactModel<HertzNormal, MindlinSpring>;
+  for (const double vn : {-0.2, 0.15}) {  // approaching, separating
+    ContactKinematics c;
+    c.n = Vec3(0, 0, 1);
+    c.overlap = 2e-6;
+    c.v_rel = Vec3(0.01, 0, vn);
+    c.w_arm = Vec3(0, 0.003, 0);
+    c.m_eff = 2e-6, c.r_eff = 5e-4;
+    c.w_rel = Vec3::Zero();  // the per-contact loop reads it (it may hold any rolling law)
+    const double dt = 1e-6;
+    const auto run = [&](auto model, const PairParams& p) {
+      Vec3 spring(1e-4, 0, 0);
+      std::uint8_t bonded = 0;
+      double mark = 1.9e-6;
+      Vec3 rolling = Vec3::Zero();
+      const ContactForce f = decltype(model)::evaluate(p, c, dt, spring, bonded, mark, rolling);
+      return std::pair{f.on_i, mark};
+    };
+    const PairParams &explicit_pair = table.pair(0, 0), &default_pair = table.pair(1, 1);
+    ASSERT_TRUE(explicit_pair.explicit_dashpot && table.pair(0, 1).explicit_dashpot && !default_pair.explicit_dashpot);
+    EXPECT_EQ(run(MixedModel{}, explicit_pair), run(Explicit{}, explicit_pair)) << "v_n " << vn;
+    EXPECT_EQ(run(MixedModel{}, default_pair), run(Integrated{}, default_pair)) << "v_n " << vn;
+    EXPECT_NE(run(Explicit{}, explicit_pair).first, run(Integrated{}, explicit_pair).first) << "the two forms must differ here";
+  }
 }
 
 // An unbonded liu pair, with the liu force loop active (another pair far away is bonded), carries

@@ -230,9 +230,9 @@ TEST(SimdLoops, LawEndsARunWithThePlainLoopsBits) {
 // hold enough contacts for the four-wide law), its materials made Hertz-Mindlin (two moduli and
 // restitutions, one clipping viscous attraction) or kept Cundall, one friction angle of 10 degrees
 // (so that many contacts slide), 300 steps, every contact bonded (the four-wide loop's bonded
-// variant), 300 more; Hertz-Mindlin also with the explicit dashpot (docs/contact-laws.md eq. D7)
-// for both materials (its own compiled loop), and for one (its pairs then explicit, the other's
-// not: the per-contact loop). Positions, velocities, spins, springs, rolling
+// variant), 300 more; Hertz-Mindlin also with the explicit dashpot (docs/contact-laws.md eq. D7),
+// its own compiled loop (a scene of both forms runs the per-contact loop:
+// ForceLoop.PerContactLoopTakesEachPairsDashpot). Positions, velocities, spins, springs, rolling
 // histories, dashpot marks and bond flags, of pair and wall contacts, are compared bit for bit: any
 // lane that rounds otherwise than the plain loop shows. The runs must exercise sliding contacts (counted in the plain run:
 // the spring held on the Coulomb limit |s| = mu f_n, to 1e-12 relative: radial return's rounding).
@@ -245,18 +245,17 @@ TEST(SimdLoops, HertzMindlinAndRollingLawsEndARunWithThePlainLoopsBits) {
   struct Case {
     bool hertz;
     RollingLaw rolling;
-    int explicit_materials;  // 0, 1 (material a) or 2
+    bool explicit_dashpot;
   };
   std::vector<Case> cases;
   for (const bool hertz : {true, false})
     for (const RollingLaw rolling : {RollingLaw::None, RollingLaw::ConstantTorque, RollingLaw::ElasticPlastic})
-      if (hertz || rolling != RollingLaw::None) cases.push_back({hertz, rolling, 0});  // cundall alone: LawEndsARunWithThePlainLoopsBits
-  cases.push_back({true, RollingLaw::None, 2});
-  cases.push_back({true, RollingLaw::None, 1});
+      if (hertz || rolling != RollingLaw::None) cases.push_back({hertz, rolling, false});  // cundall alone: LawEndsARunWithThePlainLoopsBits
+  cases.push_back({true, RollingLaw::None, true});
   for (const Case& c : cases) {
     const bool hertz = c.hertz;  // plain names, not structured bindings: the scene's lambda captures them
     const RollingLaw rolling = c.rolling;
-    const int explicit_materials = c.explicit_materials;
+    const bool explicit_dashpot = c.explicit_dashpot;
     auto scene = [&]() {
       Simulation sim = law_scene(1.22);
       std::vector<Material> m = sim.materials.materials();
@@ -266,15 +265,14 @@ TEST(SimdLoops, HertzMindlinAndRollingLawsEndARunWithThePlainLoopsBits) {
         x.poisson_ratio = 0.3, x.rolling_friction = 0.1, x.friction_angle = kFriction;
       }
       m[0].young_modulus = 5e7, m[1].young_modulus = 8e7;
-      m[0].explicit_dashpot = explicit_materials >= 1, m[1].explicit_dashpot = explicit_materials == 2;
+      for (Material& x : m) x.explicit_dashpot = explicit_dashpot;
       sim.materials = MaterialTable(m, {});
       sim.dt = 0.1 * sim.critical_time_step();
       return sim;
     };
     Simulation plain = scene(), wide = scene();
     const ForceVariant variant = choose_force_variant(plain.materials, false);
-    if (explicit_materials == 1) EXPECT_FALSE(variant) << "pairs of both dashpots: the per-contact loop";
-    else EXPECT_TRUE(variant && variant->explicit_dashpot == (explicit_materials == 2)) << variant_name(variant);
+    EXPECT_TRUE(variant && variant->explicit_dashpot == explicit_dashpot) << variant_name(variant);
     for (Simulation* sim : {&plain, &wide}) {
       set_simd_loops(sim == &wide);
       for (int s = 0; s < 300; ++s) sim->advance();
@@ -294,7 +292,7 @@ TEST(SimdLoops, HertzMindlinAndRollingLawsEndARunWithThePlainLoopsBits) {
       sliding += fn > 0 && std::abs(pc.spring[k].norm() - mu * fn) <= 1e-12 * mu * fn;
     }
     const std::string what = std::string(hertz ? "hertz + mindlin + " : "cundall + ") + std::string(rolling_law_name(rolling)) +
-                             (explicit_materials ? ", explicit dashpot (" + std::to_string(explicit_materials) + " materials)" : "");
+                             (explicit_dashpot ? ", explicit dashpot" : "");
     std::printf("  %s: %ld contacts at the end, %ld unbonded, %ld of them sliding\n", what.c_str(), contacts, unbonded, sliding);
     ASSERT_GT(contacts, 80) << what;
     EXPECT_GT(sliding, 10) << what << ": the run must exercise sliding";

@@ -21,10 +21,11 @@ using ForceLoopFn = double (*)(const ForceLoopInput&, ContactList& pairs, Contac
 template <class Normal, class Tangential, class Rolling>
 constexpr bool kCompiled =
     std::is_same_v<Normal, HertzNormal> ||
-    (std::is_same_v<Tangential, CoulombSpring> && (std::is_same_v<Normal, CundallNormal> || std::is_same_v<Rolling, NoRolling>)) ||
-    (std::is_same_v<Normal, WithExplicitDashpot<HertzNormal>> && std::is_same_v<Tangential, MindlinSpring>) ||
-    (std::is_same_v<Normal, WithExplicitDashpot<CundallNormal>> && std::is_same_v<Tangential, CoulombSpring> &&
-     std::is_same_v<Rolling, NoRolling>);
+    (std::is_same_v<Tangential, CoulombSpring> && (std::is_same_v<Normal, CundallNormal> || std::is_same_v<Rolling, NoRolling>));
+template <class Normal, class Tangential, class Rolling>
+constexpr bool kCompiled<WithExplicitDashpot<Normal>, Tangential, Rolling> =
+    (std::is_same_v<Normal, HertzNormal> && std::is_same_v<Tangential, MindlinSpring>) ||
+    (std::is_same_v<Normal, CundallNormal> && std::is_same_v<Tangential, CoulombSpring> && std::is_same_v<Rolling, NoRolling>);
 
 using MixedModel = ContactModel<MixedNormal, MixedTangential, MixedRolling>;
 
