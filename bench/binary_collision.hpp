@@ -29,6 +29,8 @@ struct Result {
   EnergyLedger ledger;  // at the release, where Shot::ledger
 };
 
+constexpr double kA = 1e-3, kB = 1.5e-3, kDensityA = 2500, kDensityB = 7800;
+
 struct Shot {
   NormalLaw law = NormalLaw::Cundall;
   bool wall = false;          // a sphere on a plane wall, else two spheres (radii a, b)
@@ -42,14 +44,8 @@ struct Shot {
   double young_b = 0, poisson_b = 0;   // hertz, sphere b and the wall; 0: as sphere a
   bool ledger = false;        // keep the energy ledger (sim/energy_ledger.hpp)
   bool explicit_dashpot = false;  // docs/contact-laws.md eq. D7 in place of D1-D6
-  double radius_b = 0, density_b = 0;  // sphere b; 0: kB, kDensityB (below)
-  double b_radius() const;
-  double b_density() const;
+  double radius_b = kB, density_b = kDensityB;  // sphere b
 };
-
-constexpr double kA = 1e-3, kB = 1.5e-3, kDensityA = 2500, kDensityB = 7800;
-inline double Shot::b_radius() const { return radius_b > 0 ? radius_b : kB; }
-inline double Shot::b_density() const { return density_b > 0 ? density_b : kDensityB; }
 
 inline double mass(double r, double density) { return density * 4.0 / 3.0 * std::numbers::pi * r * r * r; }
 inline double effective_mass(bool wall) {
@@ -61,7 +57,7 @@ inline Material material(const Shot& s, bool b) {
   Material m;
   m.name = b ? "b" : "a";
   m.law = s.law;
-  m.density = b ? s.b_density() : kDensityA;
+  m.density = b ? s.density_b : kDensityA;
   m.kn = s.kn;
   m.kt = s.kn;
   m.young_modulus = b && s.young_b > 0 ? s.young_b : s.young;
@@ -82,15 +78,15 @@ inline Result collide(const Shot& s) {
   sim.ledger.on = s.ledger;
   const double v = s.v;
   const double gap = (3 + s.phase) * v * sim.dt;  // the first touch at this fraction of the fourth step
-  const double rb = s.b_radius();
-  const double ma = mass(kA, kDensityA), mb = mass(rb, s.b_density());
+  const double rb = s.radius_b;
+  const double ma = mass(kA, kDensityA), mb = mass(rb, s.density_b);
   if (s.wall) {
     sim.walls.push_back(Wall{"floor", 1, {Vec3(-1, -1, 0), Vec3(1, -1, 0), Vec3(1, 1, 0), Vec3(-1, 1, 0)}, {}});
     sim.particles.add(0, Vec3(0, 0, kA + gap), kA, kDensityA, 0);
     sim.particles.v[0] = Vec3(0, 0, -v);
   } else {
     sim.particles.add(0, Vec3(0, 0, kA + rb + gap), kA, kDensityA, 0);
-    sim.particles.add(1, Vec3(0, 0, 0), rb, s.b_density(), 1);
+    sim.particles.add(1, Vec3(0, 0, 0), rb, s.density_b, 1);
     sim.particles.v[0] = Vec3(0, 0, -v * mb / (ma + mb));  // centre of mass at rest
     sim.particles.v[1] = Vec3(0, 0, v * ma / (ma + mb));
   }

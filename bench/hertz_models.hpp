@@ -28,6 +28,7 @@ inline ContactModel contact_model_named(std::string_view name) {
                               std::string(name));
 }
 inline bool with_rolling(ContactModel m) { return m == ContactModel::HertzRolling || m == ContactModel::HertzRollingExplicit; }
+inline bool with_explicit_dashpot(ContactModel m) { return m == ContactModel::HertzExplicit || m == ContactModel::HertzRollingExplicit; }
 
 // The restitution of damping ratio gamma (the inverse of damping_ratio, eq. P14).
 inline double restitution_of(double gamma) { return std::exp(-std::numbers::pi * gamma / std::sqrt(1 - gamma * gamma)); }
@@ -50,7 +51,7 @@ inline Material hertz_material(const std::string& name, const HertzBead& b, Cont
   m.tangential = TangentialLaw::Mindlin;
   m.rolling = with_rolling(model) ? RollingLaw::ElasticPlastic : RollingLaw::None;
   m.rolling_friction = with_rolling(model) ? b.rolling_friction : 0;
-  m.explicit_dashpot = model == ContactModel::HertzExplicit || model == ContactModel::HertzRollingExplicit;
+  m.explicit_dashpot = with_explicit_dashpot(model);
   m.young_modulus = b.young_modulus;
   m.poisson_ratio = b.poisson_ratio;
   m.friction_angle = std::atan(b.friction) * 180 / std::numbers::pi;

@@ -109,7 +109,7 @@ int main(int argc, char** argv) {
         bead.rolling_friction = std::atof(argv[8]);
       }
       const bench::ContactModel model = bench::contact_model_named(argv[6]);
-      if (model == bench::ContactModel::Linear) throw std::invalid_argument("series: the model must be hertz or hertz-rolling");
+      if (model == bench::ContactModel::Linear) throw std::invalid_argument("series: the model must be hertz or hertz-rolling, with or without -explicit");
       return series(std::atol(argv[2]), std::atol(argv[3]), std::max(1L, std::atol(argv[4])), std::strtoull(argv[5], nullptr, 10), model, bead);
     }
     if ((argc == 4 || argc == 5) && std::strcmp(argv[1], "lammps-data") == 0) {
@@ -124,6 +124,6 @@ int main(int argc, char** argv) {
     return 1;
   }
   std::fprintf(stderr, "usage: settle_bench run N STEPS THREADS [linear|hertz|hertz-rolling|hertz-explicit|hertz-rolling-explicit] | settle_bench mesh N STEPS THREADS TRIANGLES | "
-                       "settle_bench series N STEPS EVERY SEED hertz|hertz-rolling [FRICTION ROLLING_FRICTION] | settle_bench lammps-data N FILE [SEED]\n");
+                       "settle_bench series N STEPS EVERY SEED hertz|hertz-rolling[-explicit] [FRICTION ROLLING_FRICTION] | settle_bench lammps-data N FILE [SEED]\n");
   return 2;
 }

@@ -22,6 +22,20 @@ def sh(cmd):
         return "?"
 
 
+def scene_procs(runs, meta, procs_at):
+    """(scene, particles, steps, procs) for each scene in size order and each process count it was
+    run with; procs_at: the place of the process count in the runs' keys."""
+    for scene in sorted({k[0] for k in runs}, key=lambda s: meta[s][0]):
+        n, steps = meta[scene]
+        for procs in sorted({k[procs_at] for k in runs if k[0] == scene}):
+            yield scene, n, steps, procs
+
+
+def spread(t):
+    """A run list's median with its range, as the tables print it."""
+    return f"{statistics.median(t):.2f} ({min(t):.2f}-{max(t):.2f})"
+
+
 def main(path):
     rows = list(csv.DictReader(open(path)))
     if any((r.get("model") or "linear") != "linear" for r in rows):
@@ -58,21 +72,17 @@ def main(path):
     print("`Loop time`). Peak RSS: largest process.\n")
     print("| scene | measured | steps | procs | code | runs | loop s (median) | PSPS | ours / this code | peak RSS MB |")
     print("|---|---|---|---|---|---|---|---|---|---|")
-    for scene in sorted({k[0] for k in runs}, key=lambda s: meta[s][0]):
-        n, steps = meta[scene]
-        for procs in sorted({k[2] for k in runs if k[0] == scene}):
-            ours = runs.get((scene, "dem", procs))
-            ours_psps = n * steps / statistics.median(ours) if ours else None
-            for code in ("dem", "lammps", "liggghts"):
-                t = runs.get((scene, code, procs))
-                if not t:
-                    continue
-                med = statistics.median(t)
-                psps = n * steps / med
-                ratio = "" if code == "dem" or not ours_psps else f"{ours_psps / psps:.2f}x"
-                name = {"dem": "dem (ours)", "lammps": "LAMMPS", "liggghts": "LIGGGHTS"}[code]
-                print(f"| {scene} | {', '.join(sorted(dates[scene]))} | {steps} | {procs} | {name} | {len(t)} | {med:.2f} ({min(t):.2f}-{max(t):.2f}) | {psps:.3g} | "
-                      f"{ratio} | {max(rss[(scene, code, procs)]) / 1024:.0f} |")
+    for scene, n, steps, procs in scene_procs(runs, meta, 2):
+        ours = runs.get((scene, "dem", procs))
+        ours_psps = n * steps / statistics.median(ours) if ours else None
+        for code in ("dem", "lammps", "liggghts"):
+            t = runs.get((scene, code, procs))
+            if not t:
+                continue
+            psps = n * steps / statistics.median(t)
+            ratio = "" if code == "dem" or not ours_psps else f"{ours_psps / psps:.2f}x"
+            print(f"| {scene} | {', '.join(sorted(dates[scene]))} | {steps} | {procs} | {NAMES[code]} | {len(t)} | {spread(t)} | {psps:.3g} | "
+                  f"{ratio} | {max(rss[(scene, code, procs)]) / 1024:.0f} |")
 
 
 TARGETS = {"liggghts": 2.0, "lammps": 1.5}  # issue 31: at least 2x LIGGGHTS, 1.5x LAMMPS per core
@@ -109,34 +119,31 @@ def hertz(rows):
     print("| scene | model | measured | steps | procs | code | runs | loop s (median, range) | PSPS | ours / this code | target | peak RSS MB |")
     print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     models = [m for m in ("hertz", "hertz-rolling") if any(k[1] == m for k in runs)]
-    for scene in sorted({k[0] for k in runs}, key=lambda s: meta[s][0]):
-        n, steps = meta[scene]
-        for procs in sorted({k[3] for k in runs if k[0] == scene}):
-            for model in models:
-                ours = runs.get((scene, model, "dem", procs))
-                for code in ("dem", "lammps", "liggghts"):
-                    t = runs.get((scene, model, code, procs))
-                    if not t:
-                        continue
-                    med = statistics.median(t)
-                    ratio = target = ""
-                    if code != "dem" and ours:
-                        r = med / statistics.median(ours)
-                        ratio = f"{r:.2f}x"
-                        target = f"{TARGETS[code]}x: " + verdict(r, code)
-                    print(f"| {scene} | {model} | {', '.join(sorted(dates[scene]))} | {steps} | {procs} | {NAMES[code]} | {len(t)} | "
-                          f"{med:.2f} ({min(t):.2f}-{max(t):.2f}) | {n * steps / med:.3g} | {ratio} | {target} | {max(rss[(scene, model, code, procs)]) / 1024:.0f} |")
+    for scene, n, steps, procs in scene_procs(runs, meta, 3):
+        for model in models:
+            ours = runs.get((scene, model, "dem", procs))
+            for code in ("dem", "lammps", "liggghts"):
+                t = runs.get((scene, model, code, procs))
+                if not t:
+                    continue
+                med = statistics.median(t)
+                ratio = target = ""
+                if code != "dem" and ours:
+                    r = med / statistics.median(ours)
+                    ratio = f"{r:.2f}x"
+                    target = f"{TARGETS[code]}x: " + verdict(r, code)
+                print(f"| {scene} | {model} | {', '.join(sorted(dates[scene]))} | {steps} | {procs} | {NAMES[code]} | {len(t)} | "
+                      f"{spread(t)} | {n * steps / med:.3g} | {ratio} | {target} | {max(rss[(scene, model, code, procs)]) / 1024:.0f} |")
     if len(models) == 2:
         print("\nRolling resistance over Hertz alone (median loop time of hertz-rolling / hertz - 1; issue 31: at most +15 % for ours):\n")
         print("| scene | procs | dem (ours) | LAMMPS | LIGGGHTS |")
         print("|---|---|---|---|---|")
-        for scene in sorted({k[0] for k in runs}, key=lambda s: meta[s][0]):
-            for procs in sorted({k[3] for k in runs if k[0] == scene}):
-                cells = []
-                for code in ("dem", "lammps", "liggghts"):
-                    a, b = runs.get((scene, "hertz", code, procs)), runs.get((scene, "hertz-rolling", code, procs))
-                    cells.append(f"{statistics.median(b) / statistics.median(a) - 1:+.1%}" if a and b else "")
-                print(f"| {scene} | {procs} | " + " | ".join(cells) + " |")
+        for scene, _, _, procs in scene_procs(runs, meta, 3):
+            cells = []
+            for code in ("dem", "lammps", "liggghts"):
+                a, b = runs.get((scene, "hertz", code, procs)), runs.get((scene, "hertz-rolling", code, procs))
+                cells.append(f"{statistics.median(b) / statistics.median(a) - 1:+.1%}" if a and b else "")
+            print(f"| {scene} | {procs} | " + " | ".join(cells) + " |")
     explicit = [m for m in ("hertz-explicit", "hertz-rolling-explicit") if any(k[1] == m for k in runs)]
     if explicit:
         print("\nOurs with the explicit dashpot (`explicit_dashpot = true`, docs/contact-laws.md eq. D7: the dashpot as")
@@ -145,27 +152,22 @@ def hertz(rows):
         print("dashpot through the step (eq. D1-D6, the rows above):\n")
         print("| scene | model | procs | runs | loop s (median, range) | PSPS | / LIGGGHTS (target 2x) | / LAMMPS (target 1.5x) | against D1-D6 |")
         print("|---|---|---|---|---|---|---|---|---|")
-        for scene in sorted({k[0] for k in runs}, key=lambda s: meta[s][0]):
-            n, steps = meta[scene]
-            for procs in sorted({k[3] for k in runs if k[0] == scene}):
-                for model in explicit:
-                    t = runs.get((scene, model, "dem", procs))
-                    if not t:
-                        continue
-                    med = statistics.median(t)
-                    base = model[:-len("-explicit")]
-                    cells = []
-                    for code in ("liggghts", "lammps"):
-                        peer = runs.get((scene, base, code, procs))
-                        if not peer:
-                            cells.append("")
-                            continue
-                        r = statistics.median(peer) / med
-                        cells.append(f"{r:.2f}x: " + verdict(r, code))
-                    ours = runs.get((scene, base, "dem", procs))
-                    against = f"{med / statistics.median(ours) - 1:+.1%}" if ours else ""
-                    print(f"| {scene} | {model} | {procs} | {len(t)} | {med:.2f} ({min(t):.2f}-{max(t):.2f}) | {n * steps / med:.3g} | "
-                          + " | ".join(cells) + f" | {against} |")
+        for scene, n, steps, procs in scene_procs(runs, meta, 3):
+            for model in explicit:
+                t = runs.get((scene, model, "dem", procs))
+                if not t:
+                    continue
+                med = statistics.median(t)
+                base = model[:-len("-explicit")]
+                cells = []
+                for code in ("liggghts", "lammps"):
+                    peer = runs.get((scene, base, code, procs))
+                    r = statistics.median(peer) / med if peer else None
+                    cells.append(f"{r:.2f}x: " + verdict(r, code) if peer else "")
+                ours = runs.get((scene, base, "dem", procs))
+                against = f"{med / statistics.median(ours) - 1:+.1%}" if ours else ""
+                print(f"| {scene} | {model} | {procs} | {len(t)} | {spread(t)} | {n * steps / med:.3g} | "
+                      + " | ".join(cells) + f" | {against} |")
     print(HERTZ_NOTES)
 
 
