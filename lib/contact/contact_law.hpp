@@ -97,8 +97,7 @@ struct ContactModel {
   }
   [[gnu::always_inline]] static ContactForce evaluate_in_plane(const PairParams& p, const ContactKinematics& c, double dt, Vec3& spring,
                                                                std::uint8_t& bonded, double& mark, Vec3& rolling) {
-    LaneKinematics<double> k{lanes::triple(c.n), c.overlap, lanes::triple(c.v_rel), lanes::triple(c.w_arm), c.m_eff, c.r_eff};
-    if constexpr (has_rolling) k.w_rel = lanes::triple(c.w_rel);  // set only then (ContactKinematics)
+    const LaneKinematics<double> k = lane_kinematics<has_rolling>(c);
     lanes::Triple<double> s = lanes::triple(spring), r = lanes::triple(rolling);
     bool b = bonded != 0;
     const LaneForce<double> f = evaluate_in_plane(p, k, dt, s, b, mark, r);

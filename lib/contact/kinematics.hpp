@@ -48,6 +48,60 @@ struct LaneKinematics {
   L r_eff;
   lanes::Triple<L> w_rel{};  // as ContactKinematics
 };
+
+// R* = a_i a_j / (a_i + a_j), the pair's effective radius (docs/contact-laws.md eq. H3).
+template <class L>
+[[gnu::always_inline]] inline L effective_radius(const L& ri, const L& rj) {
+  return (ri * rj) / (ri + rj);
+}
+
+// The kinematics of pair contact (i, j) (eq. 2.11-2.12, H3, and m* of eq. 2.26), written once over
+// a lane type: the plain loops take one contact, the four-wide law four, with the same operations,
+// so the same bits. In three parts written into `c`, so that the four-wide law gathers each part's
+// values just before it and copies nothing (bench/results/design.md).
+//
+// The geometry, from d = x_j - x_i (the nearest image) and the radii: the unit normal n and the
+// overlap (eq. 2.11).
+template <class L>
+[[gnu::always_inline]] inline void pair_geometry(const lanes::Triple<L>& d, const L& ri, const L& rj, LaneKinematics<L>& c) {
+  using namespace lanes;
+  const L dist = root(dot(d, d));
+  c.n = d * (L(1.0) / dist);
+  c.overlap = (ri + rj) - dist;
+}
+// The relative motion (eq. 2.12): v_rel, w_arm and, With_rolling, w_rel.
+template <bool With_rolling, class L>
+[[gnu::always_inline]] inline void pair_motion(const L& ri, const L& rj, const lanes::Triple<L>& vi, const lanes::Triple<L>& vj,
+                                               const lanes::Triple<L>& wi, const lanes::Triple<L>& wj, LaneKinematics<L>& c) {
+  c.v_rel = vj - vi;
+  c.w_arm = rj * wj + ri * wi;
+  if constexpr (With_rolling) c.w_rel = wi - wj;
+}
+// The effective mass and radius. With Fixed, a particle held in place (`held_i`, `held_j`) is
+// infinitely heavy: m* is the other's mass (as LAMMPS's fix freeze).
+template <bool Fixed, class L, class M>
+[[gnu::always_inline]] inline void pair_inertia(const L& ri, const L& rj, const L& mi, const L& mj, const M& held_i, const M& held_j,
+                                                LaneKinematics<L>& c) {
+  c.m_eff = (mi * mj) / (mi + mj);
+  if constexpr (Fixed) c.m_eff = lanes::select(held_i, mj, lanes::select(held_j, mi, c.m_eff));
+  c.r_eff = effective_radius(ri, rj);  // a law that reads none: compiled away
+}
+
+// One contact's kinematics as Eigen's vectors (the plain loops, the tests) and over lanes.
+template <bool With_rolling>
+[[gnu::always_inline]] inline ContactKinematics contact_kinematics(const LaneKinematics<double>& k) {
+  ContactKinematics c;  // w_rel set only With_rolling (ContactKinematics)
+  c.n = lanes::vec3(k.n), c.overlap = k.overlap, c.v_rel = lanes::vec3(k.v_rel), c.w_arm = lanes::vec3(k.w_arm);
+  c.m_eff = k.m_eff, c.r_eff = k.r_eff;
+  if constexpr (With_rolling) c.w_rel = lanes::vec3(k.w_rel);
+  return c;
+}
+template <bool With_rolling>
+[[gnu::always_inline]] inline LaneKinematics<double> lane_kinematics(const ContactKinematics& c) {
+  LaneKinematics<double> k{lanes::triple(c.n), c.overlap, lanes::triple(c.v_rel), lanes::triple(c.w_arm), c.m_eff, c.r_eff};
+  if constexpr (With_rolling) k.w_rel = lanes::triple(c.w_rel);
+  return k;
+}
 // The contact radius of elastic spheres, a = sqrt(R* u) (0 apart: u <= 0), docs/contact-laws.md
 // eq. H1, H6, H8: written once, so that the Hertz force, its dashpot and Mindlin's stiffness and
 // dashpot of one contact are the same expression, which the compiler computes once.

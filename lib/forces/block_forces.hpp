@@ -93,16 +93,13 @@ double pair_chunk(const ChunkInput& chunk, long first, long last, std::vector<in
   for (int e = 0; e < m; ++e) {
     const long k = contact[e];
     const int i = a.slot_i[k], j = a.slot_j[k];
-    const Vec3 d(dx[e], dy[e], dz[e]);
-    const double dist = d.norm();
-    ContactKinematics& c = kin[e];
-    c.n = d * (1.0 / dist);
-    c.overlap = a.radius[i] + a.radius[j] - dist;  // eq. 2.11
-    c.v_rel = a.v[j] - a.v[i];
-    c.w_arm = a.radius[j] * a.w[j] + a.radius[i] * a.w[i];
-    c.m_eff = effective_mass(a.mass[i], a.mass[j], Fixed && a.fixed[i], Fixed && a.fixed[j]);
-    c.r_eff = a.radius[i] * a.radius[j] / (a.radius[i] + a.radius[j]);  // eq. H3
-    if constexpr (Model::has_rolling) c.w_rel = a.w[i] - a.w[j];
+    using lanes::triple;
+    const double ri = a.radius[i], rj = a.radius[j];
+    LaneKinematics<double> c;
+    pair_geometry(lanes::Triple<double>{dx[e], dy[e], dz[e]}, ri, rj, c);
+    pair_motion<Model::has_rolling>(ri, rj, triple(a.v[i]), triple(a.v[j]), triple(a.w[i]), triple(a.w[j]), c);
+    pair_inertia<Fixed>(ri, rj, a.mass[i], a.mass[j], Fixed && a.fixed[i], Fixed && a.fixed[j], c);
+    kin[e] = contact_kinematics<Model::has_rolling>(c);
   }
   for (int e = 0; e < m; ++e) {
     const long k = contact[e];

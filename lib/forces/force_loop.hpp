@@ -139,14 +139,6 @@ inline Vec3 separation(const Particles& p, const PeriodicBox& box, int i, int j)
   return box.any() ? separation<true>(p, box, i, j) : separation<false>(p, box, i, j);
 }
 
-// The mass of eq. 2.26's damping for a pair: m_i m_j / (m_i + m_j), or against a particle fixed in
-// place (infinitely heavy, as in LAMMPS's fix freeze) the other's mass.
-inline double effective_mass(double mass_i, double mass_j, bool fixed_i, bool fixed_j) {
-  if (fixed_i) return mass_j;
-  if (fixed_j) return mass_i;
-  return mass_i * mass_j / (mass_i + mass_j);
-}
-
 // Whether a candidate touches now: the test that makes it a contact (with a bond, so does holding).
 inline bool spheres_touch(const Vec3& separation, double radius_i, double radius_j) {
   const double r = radius_i + radius_j;

@@ -256,25 +256,17 @@ DEM_AVX2 double pair_law(const PairLawArrays a, const MaterialTable& materials, 
     const simd::Ints4 k = simd::load(found.contact + e);
     const simd::Ints4 i = simd::gather(a.slot_i, k), j = simd::gather(a.slot_j, k);
     simd::store_aligned(g.k, k), simd::store_aligned(g.i, i), simd::store_aligned(g.j, j);
-    LaneKinematics<Lanes4>& c = g.c;
-    const V3 d = load3(found.dx + e, found.dy + e, found.dz + e);
-    const Lanes4 dist = lanes::root(dot(d, d));
-    c.n = d * (Lanes4(1.0) / dist);
     const Lanes4 ri = simd::gather(a.radius, g.i), rj = simd::gather(a.radius, g.j);
     g.ri = ri, g.rj = rj;
-    c.overlap = (ri + rj) - dist;
-    c.v_rel = load_four(a.v, g.j) - load_four(a.v, g.i);
-    const V3 wi = load_four(a.w, g.i), wj = load_four(a.w, g.j);
-    c.w_arm = rj * wj + ri * wi;
-    if constexpr (Model::has_rolling) c.w_rel = wi - wj;
-    const Lanes4 mi = simd::gather(a.mass, g.i), mj = simd::gather(a.mass, g.j);
-    c.m_eff = (mi * mj) / (mi + mj);
-    c.r_eff = (ri * rj) / (ri + rj);  // eq. H3 (a law that reads none: compiled away)
-    if constexpr (Fixed) {  // effective_mass: against a fixed particle, the other's mass
+    pair_geometry(load3(found.dx + e, found.dy + e, found.dz + e), ri, rj, g.c);
+    pair_motion<Model::has_rolling>(ri, rj, load_four(a.v, g.i), load_four(a.v, g.j), load_four(a.w, g.i), load_four(a.w, g.j), g.c);
+    Mask4 held_i{}, held_j{};
+    if constexpr (Fixed) {
       const std::uint8_t* fixed = a.fixed;
-      c.m_eff = lanes::select(lanes::mask4(fixed[g.i[0]], fixed[g.i[1]], fixed[g.i[2]], fixed[g.i[3]]), mj,
-                              lanes::select(lanes::mask4(fixed[g.j[0]], fixed[g.j[1]], fixed[g.j[2]], fixed[g.j[3]]), mi, c.m_eff));
+      held_i = lanes::mask4(fixed[g.i[0]], fixed[g.i[1]], fixed[g.i[2]], fixed[g.i[3]]);
+      held_j = lanes::mask4(fixed[g.j[0]], fixed[g.j[1]], fixed[g.j[2]], fixed[g.j[3]]);
     }
+    pair_inertia<Fixed>(ri, rj, simd::gather(a.mass, g.i), simd::gather(a.mass, g.j), held_i, held_j, g.c);
     if (many_materials) {
       const simd::Ints4 mat_i = simd::gather(a.material, g.i), mat_j = simd::gather(a.material, g.j);
       if (!(simd::same(mat_i, law_i[half]) && simd::same(mat_j, law_j[half]))) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "contact/kinematics.hpp"
 #include "contact/model_table.hpp"
 #include "forces/force_loop.hpp"
 
@@ -55,7 +56,7 @@ double stored_energy_bound(const Particles& p, const MaterialTable& materials, c
     const int i = pairs.slot_i[k], j = pairs.slot_j[k];
     const PairParams& q = materials.pair(p.material[i], p.material[j]);
     const double u = p.radius[i] + p.radius[j] - separation(p, box, i, j).norm();
-    const double r_eff = p.radius[i] * p.radius[j] / (p.radius[i] + p.radius[j]);
+    const double r_eff = effective_radius(p.radius[i], p.radius[j]);
     e += normal_energy_bound(q, u, r_eff, pairs.bonded[k]) + spring_energy(q, pairs.spring[k], u, r_eff);
   }
   for (std::size_t k = 0; k < wall_contacts.size(); ++k) {

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "contact/kinematics.hpp"
 #include "contact/model_table.hpp"
 #include "core/error.hpp"
 #include "forces/force_loop.hpp"
@@ -169,7 +170,7 @@ void Simulation::account_energy(bool any_fixed) {
     const Vec3 d = periodic.any() ? separation<true>(periodic, x0[i], x0[j]) : separation<false>(periodic, x0[i], x0[j]);
     const double dist = d.norm();
     const Vec3 n = d / dist;
-    const double u = p.radius[i] + p.radius[j] - dist, r_eff = p.radius[i] * p.radius[j] / (p.radius[i] + p.radius[j]);
+    const double u = p.radius[i] + p.radius[j] - dist, r_eff = effective_radius(p.radius[i], p.radius[j]);
     const PairParams& q = materials.pair(p.material[i], p.material[j]);
     account_held<decltype(normal)>(q, pairs_.spring[k], n, u, r_eff, pairs_.bonded[k], broke, p.v[i] - p.v[j], v0[i] - v0[j], dt, measure, t);
     if (measure && q.rolling != RollingLaw::None) account_rolling_spring(q, pairs_.rolling[k], p.w[i] - p.w[j], u, r_eff, dt, t);
