@@ -28,8 +28,8 @@ inline bool move_one(const MotionArrays& a, const MotionConstants& c, long i) {
       return true;
     }
   } else {
-    a.v[i] = (c.ar * a.v[i] + a.force[i].v * (c.dt / a.mass[i])) * c.br;
-    a.w[i] = (c.at * a.w[i] + a.torque[i].v * (c.dt / sphere_inertia(a.mass[i], a.radius[i]))) * c.bt;
+    a.v[i] = next_velocity(c.ar, a.v[i], a.force[i].v, c.dt / a.mass[i], c.br);
+    a.w[i] = next_velocity(c.at, a.w[i], a.torque[i].v, c.dt / sphere_inertia(a.mass[i], a.radius[i]), c.bt);
   }
   a.x[i] += a.v[i] * c.dt;
   if (c.box.any()) c.box.wrap(a.x[i], a.image[i]);
@@ -49,7 +49,7 @@ using lanes::Lanes4;
 DEM_AVX2 long move_four_at_a_time(const MotionArrays& a, const MotionConstants& c, long first, long last) {
   using simd::broadcast;
   const Lanes4 ar = broadcast(c.ar), br = broadcast(c.br), at = broadcast(c.at), bt = broadcast(c.bt);
-  const Lanes4 dt = broadcast(c.dt), two_fifths = broadcast(0.4), largest = broadcast(DBL_MAX);
+  const Lanes4 dt = broadcast(c.dt), largest = broadcast(DBL_MAX);
   // Four particles' vectors in three registers (simd/layout.hpp: packed), and what they are
   // compared with: the period (an axis that is not periodic: no bound), to see which particles
   // left it.
@@ -77,13 +77,13 @@ DEM_AVX2 long move_four_at_a_time(const MotionArrays& a, const MotionConstants& 
     const Lanes4 m = simd::load(a.mass + i), r = simd::load(a.radius + i);
     Lanes4 to_v[3], to_w[3], force[3], torque[3];
     simd::by_particle(dt / m, to_v);                             // dt / m
-    simd::by_particle(dt / (((two_fifths * m) * r) * r), to_w);  // dt / I, I = sphere_inertia(m, a)
+    simd::by_particle(dt / sphere_inertia(m, r), to_w);          // dt / I
     // Four particles' padded loads [x y z -] (state/load_sum.hpp), packed as their vectors are.
     simd::pack_padded(a.force[i].v.data(), force), simd::pack_padded(a.torque[i].v.data(), torque);
     int broken = 0, left = 0;
     for (int q = 0; q < 3; ++q) {
-      const Lanes4 vq = (ar * simd::load(v + 4 * q) + force[q] * to_v[q]) * br;
-      const Lanes4 wq = (at * simd::load(w + 4 * q) + torque[q] * to_w[q]) * bt;
+      const Lanes4 vq = next_velocity(ar, simd::load(v + 4 * q), force[q], to_v[q], br);
+      const Lanes4 wq = next_velocity(at, simd::load(w + 4 * q), torque[q], to_w[q], bt);
       const Lanes4 xq = simd::load(x + 4 * q) + vq * dt;
       simd::store(v + 4 * q, vq), simd::store(w + 4 * q, wq), simd::store(x + 4 * q, xq);
       // finite_state: |x + v + w| is NaN or above the largest double somewhere.

@@ -14,7 +14,11 @@ namespace dem {
 
 inline double sphere_volume(double a) { return 4.0 / 3.0 * std::numbers::pi * a * a * a; }
 inline double sphere_mass(double density, double a) { return density * sphere_volume(a); }  // m = rho 4/3 pi a^3
-inline double sphere_inertia(double m, double a) { return 0.4 * m * a * a; }  // I = 2/5 m a^2
+// I = 2/5 m a^2, over a lane type as well (the four-wide motion, integrate/motion.cpp).
+template <class L>
+[[gnu::always_inline]] inline L sphere_inertia(const L& m, const L& a) {
+  return L(0.4) * m * a * a;
+}
 // Values of Particles::fixed. A held or prescribed particle ignores its load (the integrator sets
 // its motion) and acts on others as if infinitely heavy.
 inline constexpr std::uint8_t kFree = 0;
