@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace dem {
@@ -102,19 +103,20 @@ Vec3 closest_on_segment(const Vec3& a, const Vec3& b, const Vec3& p) {
   return a + s * ab;
 }
 
-// eq. 2.4-2.5 with the edges' inward normals (inward_normals): the projection on the plane if it
-// lies on the inner side of every edge, else the nearest point of the boundary.
+// eq. 2.4-2.5 with the edges' inward normals (inward_normals): the projection q on the plane if it
+// lies on the inner side of every edge, else the nearest point of the edges it lies outside of. In
+// a convex polygon the nearest point of the boundary lies on such an edge (docs/physics.md, P21),
+// so the others need no search.
 Vec3 closest_point_with(const Vec3* v, const Vec3* inward, int n, const Vec3& nrm, const Vec3& p) {
   const Vec3 q = p - (p - v[0]).dot(nrm) * nrm;  // projection on the plane
-  bool inside = true;
-  for (int k = 0; k < n && inside; ++k) inside = (q - v[k]).dot(inward[k]) >= 0;
-  if (inside) return q;
-  // The vertex after k, without `% n` (an integer division per edge).
-  const auto next = [n](int k) { return k + 1 < n ? k + 1 : 0; };
-  Vec3 best = closest_on_segment(v[0], v[1], p);
-  double best_d2 = (best - p).squaredNorm();
-  for (int k = 1; k < n; ++k) {
-    const Vec3 c = closest_on_segment(v[k], v[next(k)], p);
+  int outside = 0;                                // a bit per edge
+  for (int k = 0; k < n; ++k) outside |= int((q - v[k]).dot(inward[k]) < 0) << k;
+  if (!outside) return q;
+  Vec3 best;
+  double best_d2 = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < n; ++k) {
+    if (!(outside >> k & 1)) continue;
+    const Vec3 c = closest_on_segment(v[k], v[k + 1 < n ? k + 1 : 0], p);
     const double d2 = (c - p).squaredNorm();
     if (d2 < best_d2) best = c, best_d2 = d2;
   }
