@@ -182,7 +182,7 @@ template <class Model>
   c.m_eff = p.mass[i];
   c.r_eff = p.radius[i];  // a wall: infinite radius, eq. H3
   c.w_rel = Model::has_rolling ? Vec3(p.w[i] - g.spin) : Vec3::Zero();  // unread without rolling, but copied
-  found.add(k, in.materials.pair(p.material[i], in.walls[wc.slot_j[k]].material), c, v_wall);
+  found.add(k, in.materials.pair(p.material[i], g.material), c, v_wall);
 }
 
 // The wall candidates of run r (one particle's, in order): which are contacts this step, those

@@ -34,7 +34,6 @@ struct WallForce {
 struct ForceLoopInput {
   const Particles& particles;
   const MaterialTable& materials;
-  const std::vector<Wall>& walls;
   const std::vector<WallGeometry>& geometry;  // the walls now
   const std::vector<int>& wall_runs;  // where each particle's wall candidates start (+ the end)
   const std::vector<int>& wall_run_order;   // the runs by their particle's storage slot

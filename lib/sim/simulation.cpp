@@ -92,7 +92,7 @@ void Simulation::compute_loads(const MotionStep* motion) {
     ledger_particle_work_.resize(particles.size());
   }
   if (wall_rank_.size() != walls_.size()) rank_wall_candidates();
-  const ForceLoopInput in{particles, materials, walls, wall_geometry_, wall_runs_, wall_run_order_, wall_block_first_, periodic,
+  const ForceLoopInput in{particles, materials, wall_geometry_, wall_runs_, wall_run_order_, wall_block_first_, periodic,
                           any_fixed, has_bonds_, dt, params.keep_pair_results,
                           ledger.on ? ledger_contact_work_.data() : nullptr, ledger.on ? ledger_wall_work_.data() : nullptr,
                           ledger.on && !ledger_work_zeros_, wall_rank_.data(), wall_forces_.data()};

@@ -73,6 +73,7 @@ void Wall::start_motion(const WallMotion& m, double t) {
 
 void place_wall(const Wall& w, double t, double dt, WallGeometry& g) {
   const WallMotion& m = w.motion;
+  g.material = w.material;
   // A fixed element placed before stays where it is: skip the normal's square root (a 10,000-
   // triangle floor would otherwise cost a fifth of a step).
   if (!m.moves() && g.count == static_cast<int>(w.base.size()) && g.velocity == Vec3::Zero() && g.spin == Vec3::Zero() &&

@@ -58,6 +58,7 @@ struct WallGeometry {
   Vec3 velocity = Vec3::Zero();  // of the axis point, at t^{n-1/2} like the particles' velocities
   Vec3 spin = Vec3::Zero();      // ω a [rad/s]
   Vec3 centre = Vec3::Zero();    // the axis point c + d now [m]
+  int material = 0;              // the wall's (Wall::material), read here where the contact's geometry is in cache
   // velocity + spin x (x - centre), written out by component: the same operations as Eigen's
   // cross product and sum, kept in registers (Eigen's went through memory, stored a double at a time
   // and read back two at a time: a stalled store forwarding per wall contact).
