@@ -21,9 +21,9 @@ struct MotionConstants {
   PeriodicBox box;  // a particle that leaves the period comes back in at the other side
 };
 
-// The velocity after the step (eq. P3), written once for the plain step (S double, V Vec3) and the
-// four-wide one (S, V four lanes, one coordinate of four particles): (a v + load dt_over_m) b, with
-// dt / m for the translation and dt / I for the rotation.
+// The velocity or spin after the step (eq. P3-P4), written once for the plain step (S double,
+// V Vec3) and the four-wide one (S and V four lanes, one coordinate of four particles):
+// (a v + load dt_over_m) b, with dt / m for the translation and dt / I for the rotation.
 template <class S, class V>
 [[gnu::always_inline]] inline V next_velocity(const S& a, const V& v, const V& load, const S& dt_over_m, const S& b) {
   return (a * v + load * dt_over_m) * b;
