@@ -301,6 +301,30 @@ TEST(Determinism, RollingResistanceChangesNoBitWithStorageOrThreads) {
   omp_set_num_threads(threads_before);
 }
 
+// The threads' runs of blocks are cut from the blocks' times smoothed over the last steps: the
+// estimates until the first timed step, then that step's times, then each step a quarter of the
+// way to the latest (integer ticks), so that one slow block in one step moves a cut by a quarter
+// of what it would alone. Hand-worked values.
+TEST(BlockTimes, RunsAreCutFromSmoothedTimes) {
+  BlockTimes t;
+  t.fit(4, [](long) { return 1L; });  // estimates: four equal blocks
+  EXPECT_EQ(t.run_start(1, 2), 2);
+  t.ticks = {100, 100, 100, 100};
+  t.fit(4, [](long) { return 1L; });  // the first timed step replaces the estimates
+  EXPECT_EQ(t.fitted, (std::vector<long>{100, 100, 100, 100}));
+  t.ticks = {100, 100, 100, 500};  // one step where the last block was slow
+  t.fit(4, [](long) { return 1L; });
+  EXPECT_EQ(t.fitted, (std::vector<long>{100, 100, 100, 200}));
+  EXPECT_EQ(t.total, 500);
+  EXPECT_EQ(t.run_start(1, 2), 2) << "the cut stays after the second block (the third's middle, 250, is not below half of 500); "
+                                      "from the step's times alone ({100, 100, 100, 500}) it would move past the third";
+  t.ticks = {100, 100, 100, 100};
+  t.fit(4, [](long) { return 1L; });
+  EXPECT_EQ(t.fitted[3], 175);
+  t.fit(5, [](long) { return 7L; });  // a new count of blocks: estimates again
+  EXPECT_EQ(t.fitted, (std::vector<long>{7, 7, 7, 7, 7}));
+}
+
 // A particle is summed only once every contact it needs is computed, whatever the threads' pace:
 // one thread of two or three pauses before each block it computes (set_lagging_thread_for_tests),
 // so that the others reach the particles whose contacts lie in its blocks first and would sum them
@@ -601,7 +625,7 @@ TEST(StorageOrder, ARunsFirstStepSortsWithTheLongestAxisSlowest) {
 }
 
 // The threads' shares of a blocked loop (core/block_times.hpp): contiguous runs that cover every
-// block once, each ending at the block boundary nearest its share of the last step's times.
+// block once, each ending at the block boundary nearest its share of the blocks' fitted times.
 TEST(BlockTimes, RunsCoverEveryBlockOnceAndEndNearestTheirShare) {
   BlockTimes t;
   t.fit(4, [](long) { return 1L; });

@@ -1,7 +1,7 @@
 #pragma once
 // How a loop over blocks of storage slots shares its work among threads: each thread takes one
 // contiguous run of blocks (the particles stay in its core's cache from step to step), sized by
-// the blocks' times at the last step (what a block costs depends on its contacts, on fixed
+// the blocks' times at the last steps (what a block costs depends on its contacts, on fixed
 // particles, on the caches: counts balanced two threads poorly, design.md). Speed only: no
 // result depends on the split.
 #include <algorithm>
@@ -16,9 +16,12 @@ namespace dem {
 
 struct BlockTimes {
   std::vector<long> ticks;  // per block: its latest time [ticks of now()], written as blocks end
-  std::vector<long> fitted; // the times the runs are cut from: ticks as of the last fit() (so no
-                            // thread need wait for the others to cut theirs before timing a block)
+  std::vector<long> fitted; // the times the runs are cut from, as of the last fit() (so no thread
+                            // need wait for the others to cut theirs before timing a block): each
+                            // block's times smoothed over the last few steps, so that one step's
+                            // noise does not move a run's end back and forth (design.md)
   long total = 0;           // their sum
+  long timed = 0;           // fits since the count of blocks last changed
 
   // The clock of block times, in ticks of some fixed unit (only their ratios are used): the
   // processor's time-stamp counter where there is one, else steady_clock's nanoseconds.
@@ -39,8 +42,12 @@ struct BlockTimes {
     if (static_cast<long>(ticks.size()) != blocks) {
       ticks.resize(blocks);
       for (long b = 0; b < blocks; ++b) ticks[b] = initial(b);
+      fitted = ticks, timed = 0;
+    } else if (timed++ == 0 || fitted.size() != ticks.size()) {
+      fitted = ticks;  // the first step's times replace the estimates
+    } else {
+      for (long b = 0; b < blocks; ++b) fitted[b] += (ticks[b] - fitted[b]) / 4;  // a quarter of the way to the latest
     }
-    fitted = ticks;
     total = 0;
     for (long t : fitted) total += t;
   }
