@@ -27,10 +27,14 @@ TEST(WallGeometry, FaceEdgeAndVertexRegions) {
   EXPECT_EQ(closest(Vec3(1.5, -0.1, 0)), Vec3(1, 0, 0)) << "vertex (1, 0, 0)";
 }
 
-// closest_point on a placed element reads the edges' inward normals computed when it was placed:
-// they must follow the element as it moves (here a quad turning about a tilted axis) and give the
-// polygon's own closest point, bit for bit, inside and outside it. Each point is also checked
-// against the vertices: none is nearer than the closest point (tolerance: round-off, 1e-15).
+// closest_point on a placed element reads the normal and the edges' inward normals worked out where
+// its motion started and turned with it (docs/physics.md, after P23): they must follow the element
+// as it moves (here a quad turning about a tilted axis) and match those worked out afresh from the
+// moved vertices, and give the polygon's own closest point, inside and outside it. Tolerances:
+// round-off, 1e-15 for unit directions; 1e-14 for points a unit from the origin, where a point on
+// an edge may fall on either side of it by one rounding (then both closest points are the same
+// point to round-off). Each point is also checked against the vertices: none is nearer than the
+// closest point (1e-15).
 TEST(WallGeometry, PlacedElementsClosestPointsFollowTheirMotion) {
   WallMotion turning;
   turning.centre = Vec3(0.3, 0.2, 0);
@@ -40,15 +44,58 @@ TEST(WallGeometry, PlacedElementsClosestPointsFollowTheirMotion) {
   WallGeometry g;
   for (double t : {0.0, 0.4, 1.3}) {
     place_wall(w, t, 1e-3, g);
+    const Vec3 fresh_normal = (g.vertices[1] - g.vertices[0]).cross(g.vertices[2] - g.vertices[0]).normalized();
+    EXPECT_LE((g.normal - fresh_normal).norm(), 1e-15) << "t = " << t;
+    std::array<Vec3, 4> fresh_inward;
+    inward_normals(g.vertices.data(), g.count, fresh_normal, fresh_inward.data());
+    for (int k = 0; k < g.count; ++k) EXPECT_LE((g.inward[k] - fresh_inward[k]).norm(), 1e-15 * fresh_inward[k].norm()) << "t = " << t;
     for (double a = -0.5; a <= 1.5; a += 0.25)
       for (double b = -0.5; b <= 1.0; b += 0.25)
         for (double c : {-0.3, 0.2}) {
           const Vec3 p = w.motion.place(Vec3(a, b, c), t);
           const Vec3 q = closest_point(g, p);
-          EXPECT_EQ(q, closest_point_on_polygon(g.vertices.data(), g.count, g.normal, p)) << "t = " << t << ", p = " << p.transpose();
+          EXPECT_LE((q - closest_point_on_polygon(g.vertices.data(), g.count, fresh_normal, p)).norm(), 1e-14)
+              << "t = " << t << ", p = " << p.transpose();
           for (int v = 0; v < g.count; ++v) EXPECT_LE((q - p).norm(), (g.vertices[v] - p).norm() + 1e-15);
         }
   }
+}
+
+// The frame a placed element keeps (its base and the base's normals) must follow a new base: a
+// stage's motion starting where the last left the element (Wall::start_motion), a fixed element
+// after a turning one, and another element placed into the same geometry. Each placement must equal
+// a first placement into fresh geometry, bit for bit (the same arithmetic from the same base).
+TEST(WallGeometry, PlacedElementsFollowANewBase) {
+  WallMotion turning;
+  turning.centre = Vec3(0.3, 0.2, 0);
+  turning.axis = Vec3(0, 0, 1);
+  turning.angular_speed = 3.0;
+  Wall w{"w", 0, {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 0.5, 0.1), Vec3(0, 0.5, 0.1)}, turning};
+  auto same_as_fresh = [](const Wall& wall, double t, const WallGeometry& g) {
+    WallGeometry fresh;
+    place_wall(wall, t, 1e-3, fresh);
+    EXPECT_EQ(g.count, fresh.count);
+    for (int v = 0; v < fresh.count; ++v) EXPECT_EQ(g.vertices[v], fresh.vertices[v]) << "t = " << t << ", vertex " << v;
+    for (int k = 0; k < fresh.count; ++k) EXPECT_EQ(g.inward[k], fresh.inward[k]) << "t = " << t << ", edge " << k;
+    EXPECT_EQ(g.normal, fresh.normal);
+    EXPECT_EQ(g.velocity, fresh.velocity);
+    EXPECT_EQ(g.spin, fresh.spin);
+  };
+  WallGeometry g;
+  place_wall(w, 0.2, 1e-3, g);
+  same_as_fresh(w, 0.2, g);
+  WallMotion tilted = turning;
+  tilted.axis = Vec3(1, 0, 1).normalized();
+  w.start_motion(tilted, 0.5);  // a new stage: the base is where the first motion left it
+  place_wall(w, 0.7, 1e-3, g);
+  same_as_fresh(w, 0.7, g);
+  w.start_motion(WallMotion{}, 0.9);  // then held still
+  place_wall(w, 1.0, 1e-3, g);
+  same_as_fresh(w, 1.0, g);
+  EXPECT_EQ(g.velocity, Vec3::Zero());
+  const Wall other{"other", 0, {Vec3(2, 0, 0), Vec3(3, 0, 0), Vec3(2, 1, 0)}, turning};
+  place_wall(other, 1.0, 1e-3, g);  // a triangle into the quad's geometry
+  same_as_fresh(other, 1.0, g);
 }
 
 // The boundary search looks only at the edges whose outer side holds the projection

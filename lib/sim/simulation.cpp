@@ -345,10 +345,14 @@ void Simulation::update_wall_geometry() {
   wall_geometry_.resize(walls.size());
   const long nw = static_cast<long>(walls.size());
   bool moving = false;
-#pragma omp parallel for schedule(static) if (nw > 1000) reduction(|| : moving)
-  for (long w = 0; w < nw; ++w) {
-    place_wall(walls[w], time, dt, wall_geometry_[w]);
-    moving = moving || !wall_geometry_[w].velocity.isZero(0) || !wall_geometry_[w].spin.isZero(0);
+#pragma omp parallel if (nw > 1000) reduction(|| : moving)
+  {
+    RotationCache rotations;
+#pragma omp for schedule(static)
+    for (long w = 0; w < nw; ++w) {
+      place_wall(walls[w], time, dt, wall_geometry_[w], rotations);
+      moving = moving || !wall_geometry_[w].velocity.isZero(0) || !wall_geometry_[w].spin.isZero(0);
+    }
   }
   walls_move_ = moving;
 }

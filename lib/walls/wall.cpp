@@ -51,7 +51,7 @@ Vec3 WallMotion::velocity_at(double t) const {
 
 Eigen::Matrix3d WallMotion::rotation(double t) const {
   if (angular_speed == 0) return Eigen::Matrix3d::Identity();
-  return Eigen::AngleAxisd(angular_speed * (t - t0), axis).toRotationMatrix();
+  return Eigen::AngleAxisd(angle(t), axis).toRotationMatrix();
 }
 
 Vec3 WallMotion::place(const Vec3& x0, double t) const {
@@ -71,24 +71,33 @@ void Wall::start_motion(const WallMotion& m, double t) {
   motion.t0 = t;
 }
 
-void place_wall(const Wall& w, double t, double dt, WallGeometry& g) {
+void place_wall(const Wall& w, double t, double dt, WallGeometry& g, RotationCache& rotations) {
   const WallMotion& m = w.motion;
   g.material = w.material;
-  // A fixed element placed before stays where it is: skip the normal's square root (a 10,000-
-  // triangle floor would otherwise cost a fifth of a step).
-  if (!m.moves() && g.count == static_cast<int>(w.base.size()) && g.velocity == Vec3::Zero() && g.spin == Vec3::Zero() &&
-      std::equal(w.base.begin(), w.base.end(), g.vertices.begin()))
-    return;
-  g.count = static_cast<int>(w.base.size());
-  const Vec3 d = m.offset(t);
-  if (m.rotates()) {
-    const Eigen::Matrix3d r = m.rotation(t);
-    for (int v = 0; v < g.count; ++v) g.vertices[v] = m.centre + d + r * (w.base[v] - m.centre);
-  } else {
-    for (int v = 0; v < g.count; ++v) g.vertices[v] = w.base[v] + d;
+  const int count = static_cast<int>(w.base.size());
+  const bool new_base = g.count != count || !std::equal(w.base.begin(), w.base.end(), g.base.begin());
+  if (new_base) {  // a new element, or a stage's motion started from where the last one left it
+    g.count = count;
+    std::copy(w.base.begin(), w.base.end(), g.base.begin());
+    g.base_normal = (g.base[1] - g.base[0]).cross(g.base[2] - g.base[0]).normalized();
+    inward_normals(g.base.data(), count, g.base_normal, g.base_inward.data());
   }
-  g.normal = (g.vertices[1] - g.vertices[0]).cross(g.vertices[2] - g.vertices[0]).normalized();
-  inward_normals(g.vertices.data(), g.count, g.normal, g.inward.data());
+  // A fixed element placed before stays where it is (a 10,000-triangle floor is not copied each
+  // step).
+  if (!m.moves() && !new_base && g.velocity == Vec3::Zero() && g.spin == Vec3::Zero() &&
+      std::equal(g.base.begin(), g.base.begin() + count, g.vertices.begin()))
+    return;
+  const Vec3 d = m.offset(t);
+  if (m.rotates()) {  // x = c + d + R (x0 - c); a direction turns with R alone
+    const Eigen::Matrix3d& r = rotations.rotation(m, t);
+    for (int v = 0; v < count; ++v) g.vertices[v] = m.centre + d + r * (g.base[v] - m.centre);
+    g.normal = r * g.base_normal;
+    for (int k = 0; k < count; ++k) g.inward[k] = r * g.base_inward[k];
+  } else {
+    for (int v = 0; v < count; ++v) g.vertices[v] = g.base[v] + d;
+    g.normal = g.base_normal;
+    g.inward = g.base_inward;
+  }
   // At t^{n-1/2}, the time of the particles' velocities it is compared with (eq. 2.18).
   g.velocity = m.velocity_at(t - 0.5 * dt);
   g.spin = m.angular_speed * m.axis;

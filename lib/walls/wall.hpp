@@ -3,6 +3,7 @@
 // (cylinder, cone, STL, ...) is many elements sharing one motion. Motion is prescribed, not
 // integrated, so an element's position is a closed-form function of time (exact on restart).
 #include <array>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,7 @@ struct WallMotion {
   bool rotates() const { return angular_speed != 0; }
   Vec3 offset(double t) const;                 // d(s): the displacement of the axis point c
   Vec3 velocity_at(double t) const;            // d'(s)
+  double angle(double t) const { return angular_speed * (t - t0); }  // ω s [rad]
   Eigen::Matrix3d rotation(double t) const;    // R(ω s)
   Vec3 place(const Vec3& x0, double t) const;  // x(t) of the material point at x0 when the motion started
 };
@@ -59,6 +61,12 @@ struct WallGeometry {
   Vec3 spin = Vec3::Zero();      // ω a [rad/s]
   Vec3 centre = Vec3::Zero();    // the axis point c + d now [m]
   int material = 0;              // the wall's (Wall::material), read here where the contact's geometry is in cache
+  // The element where its motion started (Wall::base) and that frame's normal and inward normals,
+  // worked out once per base: a rigid motion carries them (rotates or keeps them), so a step places
+  // a moving element without a square root, a division or a cross product (eq. P22).
+  std::array<Vec3, 4> base;
+  Vec3 base_normal = Vec3::UnitZ();
+  std::array<Vec3, 4> base_inward;
   // velocity + spin x (x - centre), written out by component: the same operations as Eigen's
   // cross product and sum, kept in registers (Eigen's went through memory, stored a double at a time
   // and read back two at a time: a stalled store forwarding per wall contact).
@@ -69,8 +77,29 @@ struct WallGeometry {
   }
 };
 
-// Fills g with wall w at time t; velocities at t - dt/2 (the particles' half step).
-void place_wall(const Wall& w, double t, double dt, WallGeometry& g);
+// The rotation of the last motion asked for: a mesh's elements share one motion, so placing them
+// works out its sine and cosine once, not once per element. The same matrix as WallMotion::rotation.
+class RotationCache {
+ public:
+  const Eigen::Matrix3d& rotation(const WallMotion& m, double t) {
+    const double a = m.angle(t);
+    if (!(a == angle_ && m.axis == axis_)) angle_ = a, axis_ = m.axis, r_ = m.rotation(t);
+    return r_;
+  }
+
+ private:
+  double angle_ = std::numeric_limits<double>::quiet_NaN();  // none yet
+  Vec3 axis_ = Vec3::Zero();
+  Eigen::Matrix3d r_ = Eigen::Matrix3d::Identity();
+};
+
+// Fills g with wall w at time t; velocities at t - dt/2 (the particles' half step). `rotations`
+// serves the elements placed one after another (a thread's own).
+void place_wall(const Wall& w, double t, double dt, WallGeometry& g, RotationCache& rotations);
+inline void place_wall(const Wall& w, double t, double dt, WallGeometry& g) {
+  RotationCache rotations;
+  place_wall(w, t, dt, g, rotations);
+}
 
 // Closest point of a wall's current polygon to p (the overload below, on its geometry).
 Vec3 closest_point(const WallGeometry& g, const Vec3& p);
