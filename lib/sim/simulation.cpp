@@ -92,10 +92,14 @@ void Simulation::compute_loads(const MotionStep* motion) {
     ledger_particle_work_.resize(particles.size());
   }
   if (wall_rank_.size() != walls_.size()) rank_wall_candidates();
+  const bool copy_wall_forces = wall_loads_asked_;
+  if (copy_wall_forces && !wall_forces_written_)
+    for (WallForce& w : wall_forces_) w.active = 0;  // stale: the loop only writes what changes
   const ForceLoopInput in{particles, materials, wall_geometry_, wall_runs_, wall_run_order_, wall_block_first_, periodic,
                           any_fixed, has_bonds_, dt, params.keep_pair_results,
                           ledger.on ? ledger_contact_work_.data() : nullptr, ledger.on ? ledger_wall_work_.data() : nullptr,
-                          ledger.on && !ledger_work_zeros_, wall_rank_.data(), wall_forces_.data()};
+                          ledger.on && !ledger_work_zeros_, wall_rank_.data(),
+                          copy_wall_forces ? wall_forces_.data() : nullptr};
   ledger_work_zeros_ = ledger.on;  // pass 1 zeroes it now, and keeps it so while the log stays on
   if (indexed_block_ != params.load_block) index_contacts_per_particle();
   const bool sum_wall_power = walls_move_ && energy_check_on();  // the energy check's (audit_energy)
@@ -129,7 +133,8 @@ void Simulation::compute_loads(const MotionStep* motion) {
   }
   pair_results_kept_ = params.keep_pair_results;
   contacts_modified();
-  wall_forces_current_ = true;  // every candidate's written by the loop just run
+  wall_forces_current_ = wall_forces_written_ = copy_wall_forces;  // every candidate's, where written
+  wall_loads_asked_ = false;
   if (worst_overlap > params.max_overlap) report_overlap(worst_overlap);
   if (loads.not_finite >= 0) report_not_finite(loads.not_finite);
 }
@@ -725,6 +730,7 @@ double Simulation::kinetic_energy() const {
 // which need the particle's slot, are for after a step.
 std::vector<WallLoad> Simulation::wall_loads(bool torques) const {
   std::vector<WallLoad> load(walls.size());
+  if (!torques) wall_loads_asked_ = true;  // the next force loops keep the copies while asked each step
   if (wall_forces_current_ && !torques) {  // the force loop's copies, in key order: the same sums
     for (const WallForce& w : wall_forces_) {
       if (!w.active) continue;

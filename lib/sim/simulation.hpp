@@ -162,7 +162,10 @@ class Simulation {
   static constexpr int kEnergyCheckEvery = 10;
   // Force, contacts and (if `torques`, only after a step) torque about the origin (contact point x
   // force) per wall element this step.
+  // Without torques, from copies the force loop keeps while wall_loads() is asked every step (a
+  // servo's), else from the candidates: the same bits.
   std::vector<WallLoad> wall_loads(bool torques = false) const;
+  bool wall_loads_from_copies() const { return wall_forces_current_; }  // what the next wall_loads() reads
   const std::vector<WallGeometry>& wall_geometry() const { return wall_geometry_; }
   // Particle slot k's net load of the last step or compute_forces() (contacts, walls and gravity) [N];
   // zero before the first.
@@ -223,10 +226,14 @@ class Simulation {
   KeyOrder pair_place_;   // working storage of place_by_storage and carry_history
   KeyOrder wall_by_key_;  // where walls_ holds its entries in key order (empty: in key order)
   // Per wall candidate its place in key order, and per place what wall_loads() reads (ForceLoopInput):
-  // current from the force loop until the contacts are modified.
+  // current from the force loop until the contacts are modified. Written only while something
+  // reads them (a servo, every step): wall_loads() asked since the last loop; a loop after one that
+  // did not write them clears them first (each keeps only the changes of its step).
   std::vector<int> wall_rank_;
   std::vector<WallForce> wall_forces_;
   bool wall_forces_current_ = false;
+  bool wall_forces_written_ = false;       // by the last force loop
+  mutable bool wall_loads_asked_ = false;  // since the last force loop
   void rank_wall_candidates();
   KeyOrder wall_place_;   // working storage of place_walls_by_storage and carry_history
   std::vector<int> place_count_;
