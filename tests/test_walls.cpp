@@ -9,6 +9,8 @@
 #include <numbers>
 #include <random>
 
+#include <omp.h>
+
 #include "sim/simulation.hpp"
 #include "walls/wall.hpp"
 
@@ -96,6 +98,51 @@ TEST(WallGeometry, PlacedElementsFollowANewBase) {
   const Wall other{"other", 0, {Vec3(2, 0, 0), Vec3(3, 0, 0), Vec3(2, 1, 0)}, turning};
   place_wall(other, 1.0, 1e-3, g);  // a triangle into the quad's geometry
   same_as_fresh(other, 1.0, g);
+}
+
+// A step places the walls' elements on one thread below 1,000 and on every thread above, each
+// thread keeping one rotation for the elements after the first (RotationCache). Either way every
+// element must be placed exactly as on its own (place_wall into fresh geometry, one rotation
+// each): with 400 and with 1,200 elements, on one and two threads, two meshes interleaved that
+// turn at the same rate about different axes (the same angle: the cache must tell them apart by
+// the axis).
+TEST(WallGeometry, ElementsPlacedTogetherEqualEachPlacedAlone) {
+  for (int elements : {400, 1200}) {
+    for (int threads : {1, 2}) {
+      Material m;
+      m.name = "m";
+      m.kn = 1e4, m.kt = 2e3;
+      Simulation sim;
+      sim.materials = MaterialTable({m}, {});
+      sim.params.parallel_min_particles = 0;
+      WallMotion about_z, about_x;
+      about_z.axis = Vec3::UnitZ(), about_z.angular_speed = 5.0;
+      about_x.axis = Vec3::UnitX(), about_x.centre = Vec3(0, 0, 1), about_x.angular_speed = 5.0;
+      for (int e = 0; e < elements; ++e) {
+        const double a0 = 0.01 * e, a1 = a0 + 0.01, z = 0.001 * e;
+        sim.walls.push_back(Wall{"w", 0,
+                                 {Vec3(0.1 * std::cos(a0), 0.1 * std::sin(a0), z), Vec3(0.3 * std::cos(a0), 0.3 * std::sin(a0), z + 0.01),
+                                  Vec3(0.3 * std::cos(a1), 0.3 * std::sin(a1), z + 0.011), Vec3(0.1 * std::cos(a1), 0.1 * std::sin(a1), z + 0.001)},
+                                 e % 2 ? about_x : about_z});
+      }
+      sim.particles.add(0, Vec3(5, 5, 5), 0.01, 2500, 0);  // far from every element
+      sim.dt = 1e-4;
+      const int before = omp_get_max_threads();
+      omp_set_num_threads(threads);
+      double t = 0;  // the last step places them at its start
+      for (int step = 0; step < 3; ++step) t = sim.time, sim.advance();
+      omp_set_num_threads(before);
+      ASSERT_EQ(sim.wall_geometry().size(), static_cast<std::size_t>(elements));
+      for (int e = 0; e < elements; ++e) {
+        WallGeometry alone;
+        place_wall(sim.walls[e], t, sim.dt, alone);
+        const WallGeometry& g = sim.wall_geometry()[e];
+        for (int v = 0; v < 4; ++v) ASSERT_EQ(g.vertices[v], alone.vertices[v]) << elements << " elements, " << threads << " threads, element " << e;
+        for (int k = 0; k < 4; ++k) ASSERT_EQ(g.inward[k], alone.inward[k]) << elements << " elements, element " << e;
+        ASSERT_EQ(g.normal, alone.normal) << elements << " elements, element " << e;
+      }
+    }
+  }
 }
 
 // The boundary search looks only at the edges whose outer side holds the projection

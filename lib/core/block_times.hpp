@@ -21,7 +21,7 @@ struct BlockTimes {
                             // block's times smoothed over the last few steps, so that one step's
                             // noise does not move a run's end back and forth (design.md)
   long total = 0;           // their sum
-  long timed = 0;           // fits since the count of blocks last changed
+  bool estimated = false;   // fitted holds initial() estimates, not yet a step's times
 
   // The clock of block times, in ticks of some fixed unit (only their ratios are used): the
   // processor's time-stamp counter where there is one, else steady_clock's nanoseconds.
@@ -42,9 +42,9 @@ struct BlockTimes {
     if (static_cast<long>(ticks.size()) != blocks) {
       ticks.resize(blocks);
       for (long b = 0; b < blocks; ++b) ticks[b] = initial(b);
-      fitted = ticks, timed = 0;
-    } else if (timed++ == 0 || fitted.size() != ticks.size()) {
-      fitted = ticks;  // the first step's times replace the estimates
+      fitted = ticks, estimated = true;
+    } else if (estimated || fitted.size() != ticks.size()) {
+      fitted = ticks, estimated = false;  // the first step's times replace the estimates
     } else {
       for (long b = 0; b < blocks; ++b) fitted[b] += (ticks[b] - fitted[b]) / 4;  // a quarter of the way to the latest
     }
