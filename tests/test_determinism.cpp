@@ -358,9 +358,11 @@ TEST(Determinism, SumsWaitForTheirContactsWhenAThreadLags) {
 
 // Where nothing reads the state between the loads and the motion, each block of particles moves
 // within the force loop as soon as its loads are summed (ForceBlocks::motion), its state kept for
-// the energy ledger as it moves; a step where the energy check measures (or, here, every step:
+// the energy ledger as it moves, and on the energy check's measuring steps its energy taken before
+// it moves (ForceBlocks::energy_before_motion); the check's reference step (or, here, every step:
 // set_motion_apart_for_tests) takes them apart. Both end with the same bits, the ledger's figures
-// and the energy check's balance included: on one thread, and on three with small blocks and each
+// and the energy check's balance included (its energies summed in the loop, at steps 10, 20 and
+// 30, against the separate pass's): on one thread, and on three with small blocks and each
 // thread in turn lagging (a block moved before another thread's contacts had read its particles
 // would show), with walls (one of them moving), periodic boundaries and a storage re-sorted every
 // 7 steps; the ledger measuring on some steps, not on others.
@@ -392,6 +394,8 @@ TEST(Determinism, MotionInTheForceLoopGivesTheSeparatePassBits) {
   ASSERT_GT(apart.wall_contact_count(), 0u);
   ASSERT_NE(apart.ledger.totals.work_walls, 0.0) << "the moving wall must press on the particles";
   ASSERT_NE(apart.ledger.totals.damping_normal, 0.0);
+  ASSERT_EQ(apart.energy_balance().step0 + 30, apart.step - 10) << "the reference must stay the first step, so that steps 10, 20 and 30 measure in the loop";
+  ASSERT_NE(apart.energy_balance().now.kinetic, apart.energy_balance().start.kinetic);
   for (const auto& [threads, lagging] : {std::pair{1, -1}, {3, 0}, {3, 1}, {3, 2}}) {
     const Simulation s = run(false, threads, lagging);
     const std::string what = std::to_string(threads) + " threads, thread " + std::to_string(lagging) + " lagging";
@@ -403,7 +407,10 @@ TEST(Determinism, MotionInTheForceLoopGivesTheSeparatePassBits) {
     EXPECT_EQ(std::bit_cast<std::uint64_t>(apart.ledger.totals.tangential_work), std::bit_cast<std::uint64_t>(s.ledger.totals.tangential_work)) << what;
     EXPECT_EQ(std::bit_cast<std::uint64_t>(apart.ledger.totals.work_walls), std::bit_cast<std::uint64_t>(s.ledger.totals.work_walls)) << what;
     EXPECT_EQ(std::bit_cast<std::uint64_t>(apart.energy_balance().wall_work), std::bit_cast<std::uint64_t>(s.energy_balance().wall_work)) << what;
-    EXPECT_EQ(std::bit_cast<std::uint64_t>(apart.energy_balance().now.total()), std::bit_cast<std::uint64_t>(s.energy_balance().now.total())) << what;
+    const MechanicalEnergy &e_apart = apart.energy_balance().now, &e = s.energy_balance().now;
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(e_apart.kinetic), std::bit_cast<std::uint64_t>(e.kinetic)) << what;
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(e_apart.rotational), std::bit_cast<std::uint64_t>(e.rotational)) << what;
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(e_apart.potential), std::bit_cast<std::uint64_t>(e.potential)) << what;
   }
   omp_set_num_threads(threads_before);
 }

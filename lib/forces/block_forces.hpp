@@ -365,7 +365,8 @@ void sum_pair_contacts(const ForceBlocks& out, const PairResults& r, const Parti
 // The net loads of block b's particles (ForceBlocks): each one's weight and pair contacts, then its
 // wall contacts, then the fluid's force; then, within a step, their motion (`not_finite`: the last
 // slot whose new state is not finite) and, with the energy log, their work (`work`: the thread's
-// sums). Called once every block holding a pair contact of theirs has been computed.
+// sums), their energy taken before they move where asked (ForceBlocks::energy_before_motion).
+// Called once every block holding a pair contact of theirs has been computed.
 template <class Model>
 double finish_block(const ForceLoopInput& in, const ContactList& pc, ContactList& wc, ForceBlocks& out, long b,
                     ThreadScratch& scratch, long& not_finite, StepWork& work) {
@@ -411,6 +412,7 @@ double finish_block(const ForceLoopInput& in, const ContactList& pc, ContactList
       before = {fluid ? x.data() : nullptr, v.data(), w.data(), block_work};
     }
   }
+  if (out.energy_before_motion) out.energy_before_motion[b] = energy_of_slots(p, out.body.gravity, in.periodic, lo, hi);
   if (out.motion) not_finite = std::max(not_finite, move_particles(out.motion->arrays, out.motion->constants, lo, hi));
   if (out.particle_work) add_particle_work(p, *out.particle_work, before, lo, hi, work);
   return worst;

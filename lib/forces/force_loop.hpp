@@ -14,6 +14,7 @@
 #include "integrate/motion.hpp"
 #include "state/load_sum.hpp"
 #include "state/materials.hpp"
+#include "state/mechanical_energy.hpp"
 #include "state/particles.hpp"
 #include "state/periodic.hpp"
 #include "walls/wall.hpp"
@@ -103,6 +104,9 @@ struct ForceBlocks {
   // particles' once they have moved (add_particle_work).
   StepWork* step_work = nullptr;
   const StepWorkInput* particle_work = nullptr;
+  // Where given (with `motion`): per block, its particles' mechanical energy just before they move
+  // (state/mechanical_energy.hpp; x^n, v^{n-1/2}: the energy check's measuring steps).
+  MechanicalEnergy* energy_before_motion = nullptr;
   long not_finite = -1;  // with motion: the last slot whose new state is not finite (move_particles)
   // Where given (empty): on return, the pair and the wall candidates whose bond the law broke, in
   // increasing order.

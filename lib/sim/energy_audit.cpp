@@ -10,28 +10,22 @@
 namespace dem {
 
 MechanicalEnergy mechanical_energy(const Particles& p, const Vec3& gravity, const PeriodicBox& box,
-                                   const std::vector<std::size_t>* order) {
-  // Blocks of a fixed size summed in parallel, then the blocks' sums in order: the same bits for
-  // any thread count. Small enough that two threads share 10^4 particles evenly (blocks of 4,096:
-  // one thread summed two of the three, and the audit took as long as on one thread).
-  constexpr long kBlock = 1024;
+                                   const std::vector<std::size_t>* order, long block) {
+  // Runs small enough that two threads share 10^4 particles evenly (runs of 4,096: one thread
+  // summed two of the three, and the check took as long as on one thread).
   const long n = static_cast<long>(p.size());
-  const long blocks = (n + kBlock - 1) / kBlock;
-  std::vector<MechanicalEnergy> part(blocks);
+  const long runs = (n + block - 1) / block;
+  std::vector<MechanicalEnergy> part(runs);
 #pragma omp parallel for schedule(static)
-  for (long b = 0; b < blocks; ++b) {
-    MechanicalEnergy& e = part[b];
-    for (long q = b * kBlock; q < std::min(n, (b + 1) * kBlock); ++q) {
-      const std::size_t k = order ? (*order)[q] : static_cast<std::size_t>(q);
-      double rotational;
-      e.kinetic += kinetic_energy_of(p, k, rotational);
-      e.rotational += rotational;
-      e.potential -= p.mass[k] * gravity.dot(box.unwrapped(p.x[k], p.image[k]));
+  for (long b = 0; b < runs; ++b) {
+    const long lo = b * block, hi = std::min(n, lo + block);
+    if (!order) {
+      part[b] = energy_of_slots(p, gravity, box, lo, hi);
+      continue;
     }
+    for (long q = lo; q < hi; ++q) add_energy_of(p, gravity, box, (*order)[q], part[b]);
   }
-  MechanicalEnergy e;
-  for (const MechanicalEnergy& s : part) e.kinetic += s.kinetic, e.rotational += s.rotational, e.potential += s.potential;
-  return e;
+  return sum_in_order(part);
 }
 
 namespace {

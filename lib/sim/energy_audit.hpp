@@ -15,31 +15,21 @@
 #include "contact/contact_list.hpp"
 #include "state/load_sum.hpp"
 #include "state/materials.hpp"
+#include "state/mechanical_energy.hpp"
 #include "state/particles.hpp"
 #include "state/periodic.hpp"
 #include "walls/wall.hpp"
 
 namespace dem {
 
-// Kinetic (translational + rotational) and gravitational potential energy -Σ m g·x [J] (x
-// unwrapped across periodic boundaries: flowing down a periodic chute releases energy), summed in
-// blocks in parallel, then block by block (the same bits for any thread count). The blocks follow
+// The particles' mechanical energy (state/mechanical_energy.hpp), summed over runs of `block`
+// storage slots in parallel, then run by run (the same bits for any thread count). The runs follow
 // `order` (a list of slots, e.g. Particles::slots_by_id: the same bits for any storage order) or,
 // without it, the storage slots: the energy check, which only decides whether a run stops as
-// unstable, takes that cheaper sum every few steps.
-struct MechanicalEnergy {
-  double kinetic = 0;     // translational + rotational
-  double rotational = 0;  // the rotational part of `kinetic`
-  double potential = 0;
-  double total() const { return kinetic + potential; }
-};
+// unstable, takes that cheaper sum, over the force loop's blocks (SimParams::load_block), so that
+// the force loop's own sum (ForceBlocks::energy_before_motion) has the same bits.
 MechanicalEnergy mechanical_energy(const Particles& p, const Vec3& gravity, const PeriodicBox& box,
-                                   const std::vector<std::size_t>* order = nullptr);
-// Kinetic energy of particle k, translational + rotational ½ I ω² (the second part in `rotational`).
-inline double kinetic_energy_of(const Particles& p, std::size_t k, double& rotational) {
-  rotational = 0.5 * p.inertia(k) * p.w[k].squaredNorm();
-  return 0.5 * p.mass[k] * p.v[k].squaredNorm() + rotational;
-}
+                                   const std::vector<std::size_t>* order = nullptr, long block = 1024);
 
 // An upper bound on the elastic energy stored in the active contacts [J]: each normal law's own
 // (contact/normal_laws.hpp: ½ kn u² in compression, F s for a bonded pair held in tension s), and

@@ -56,15 +56,16 @@ void Simulation::advance() {
   const bool any_fixed = particles.any_fixed();
   const bool any_prescribed = any_fixed && particles.any_prescribed();
   const bool audit = energy_check_on();
-  // The fibres' forces are added after the force loop, and the energy check's measuring steps read
-  // the state before the motion: otherwise the motion joins the force loop (ForceBlocks::motion),
-  // each block's state kept for the energy ledger as it moves.
-  if (fibres.empty() && !(audit && energy_check_measures_now()) && !motion_apart_for_tests) {
+  // The fibres' forces are added after the force loop, and the energy check's reference step reads
+  // the contacts' stored energy before the motion: otherwise the motion joins the force loop
+  // (ForceBlocks::motion), each block's state kept for the energy ledger as it moves, and on the
+  // check's other measuring steps each block's energy taken before it moves.
+  if (fibres.empty() && !(audit && energy_check_takes_reference()) && !motion_apart_for_tests) {
     // The ledger's pass after the step reads the state before the motion only where it measures
     // or a bond may break; otherwise each block keeps its own while it moves (block_forces.hpp).
     const bool ledger_reads_state = ledger.on && (ledger.measures() || has_bonds_);
     const MotionStep motion = motion_step(any_fixed, ledger_reads_state);
-    compute_loads(&motion);
+    compute_loads(&motion, audit && energy_check_measures_now());
     if (audit) audit_energy(any_prescribed);  // the work of the step only: the walls' from the force loop
   } else {
     compute_forces();
@@ -81,9 +82,9 @@ void Simulation::advance() {
   }
 }
 
-void Simulation::compute_forces() { compute_loads(nullptr); }
+void Simulation::compute_forces() { compute_loads(nullptr, false); }
 
-void Simulation::compute_loads(const MotionStep* motion) {
+void Simulation::compute_loads(const MotionStep* motion, bool measure_energy) {
   find_contacts();
   const bool any_fixed = particles.any_fixed();
   if (ledger.on) {  // the contacts' work for the energy ledger, per contact and per particle
@@ -113,6 +114,11 @@ void Simulation::compute_loads(const MotionStep* motion) {
                     block_done_,       touched_,       ++force_epoch_, body, simd_loops_on(), block_force_, block_torque_,
                     ledger.on ? ledger_particle_work_.data() : nullptr, sum_wall_power ? wall_power_.data() : nullptr,
                     motion};
+  check_energy_in_loop_ = motion && measure_energy;
+  if (check_energy_in_loop_) {
+    check_energy_.assign(block_first_.size() - 1, MechanicalEnergy{});
+    loads.energy_before_motion = check_energy_.data();
+  }
   broken_pairs_.clear(), broken_walls_.clear();
   loads.broken_pairs = &broken_pairs_, loads.broken_walls = &broken_walls_;
   force_variant_ = choose_force_variant(materials, has_bonds());
@@ -629,9 +635,18 @@ void Simulation::report_not_finite(long slot) const {
 // The fluid does work the energy balance does not hold (docs/physics.md, "Fluid drag"): no check then.
 bool Simulation::energy_check_on() const { return params.max_energy_gain > 0 && !params.fluid.on(); }
 
-bool Simulation::energy_check_measures_now() const {
+bool Simulation::energy_check_takes_reference() const {
   const EnergyBalance& b = energy_;
-  return !b.valid || b.particles != particles.size() || (step - b.step0) % kEnergyCheckEvery == 0;
+  return !b.valid || b.particles != particles.size();
+}
+
+bool Simulation::energy_check_measures_now() const {
+  return energy_check_takes_reference() || (step - energy_.step0) % kEnergyCheckEvery == 0;
+}
+
+MechanicalEnergy Simulation::energy_before_motion() const {
+  // The force loop's sums where it took them (compute_loads), else the same runs of slots summed here.
+  return check_energy_in_loop_ ? sum_in_order(check_energy_) : mechanical_energy(particles, params.gravity, periodic, nullptr, params.load_block);
 }
 
 void Simulation::audit_energy(bool any_prescribed) {
@@ -643,7 +658,7 @@ void Simulation::audit_energy(bool any_prescribed) {
     b.valid = true;
     b.step0 = step;
     b.particles = particles.size();
-    b.start = b.now = mechanical_energy(particles, params.gravity, periodic);
+    b.start = b.now = energy_before_motion();
     b.stored0 = stored_energy_bound(particles, materials, walls, wall_geometry_, periodic, pairs_, walls_);
     if (!fibres.empty()) b.stored0 += fibres.elastic_energy(particles, periodic);
     for (std::size_t k = 0; k < particles.size(); ++k) b.potential_scale += particles.mass[k] * params.gravity.norm() * particles.radius[k];
@@ -659,7 +674,7 @@ void Simulation::audit_energy(bool any_prescribed) {
   b.wall_work += work;
   b.wall_work_abs += std::abs(work);
   if (!energy_check_measures_now()) return;
-  b.now = mechanical_energy(particles, params.gravity, periodic);
+  b.now = energy_before_motion();
   if (b.excess() > params.max_energy_gain * b.scale()) report_energy_gain();
 }
 

@@ -193,11 +193,17 @@ class Simulation {
   void list_contacts_per_particle();
   void keep_contacts_per_particle(const Renumbering& removal);
   // compute_forces(), and with `motion` the step's motion too (ForceBlocks::motion).
-  void compute_loads(const MotionStep* motion);
+  // With measure_energy (and `motion`), each block's mechanical energy before it moves, for the
+  // energy check (energy_before_motion()).
+  void compute_loads(const MotionStep* motion, bool measure_energy);
   // Whether the energy check runs (simulation.max_energy_gain), and whether this step is one where
-  // it measures the particles' energy (before the motion: the motion stays out of the force loop).
+  // it measures the particles' energy (before the motion).
   bool energy_check_on() const;
   bool energy_check_measures_now() const;
+  bool energy_check_takes_reference() const;  // its first step, or the first after the particles changed
+  // The particles' energy at x^n and v^{n-1/2} as the energy check sums it: the force loop's, block
+  // by block, where it took it this step, else a pass over the same blocks (the same bits).
+  MechanicalEnergy energy_before_motion() const;
   // The step's motion; with keep_state, the state before it kept for the energy ledger.
   MotionStep motion_step(bool any_fixed, bool keep_state);
   void integrate(bool any_fixed, bool keep_state);
@@ -214,6 +220,8 @@ class Simulation {
   long bond_count() const;  // the sum of the pair and wall contacts' bonded flags (0: none bonded)
   bool pair_results_kept_ = true;
   EnergyBalance energy_;
+  std::vector<MechanicalEnergy> check_energy_;  // per load block, its energy before the motion (ForceBlocks)
+  bool check_energy_in_loop_ = false;  // whether the last force loop summed check_energy_
   NeighbourList neighbours_;
   // Every candidate pair of the neighbour list, with its history; `active` = a contact this step.
   ContactList pairs_, walls_;
