@@ -18,12 +18,8 @@ MechanicalEnergy mechanical_energy(const Particles& p, const Vec3& gravity, cons
   std::vector<MechanicalEnergy> part(runs);
 #pragma omp parallel for schedule(static)
   for (long b = 0; b < runs; ++b) {
-    const long lo = b * block, hi = std::min(n, lo + block);
-    if (!order) {
-      part[b] = energy_of_slots(p, gravity, box, lo, hi);
-      continue;
-    }
-    for (long q = lo; q < hi; ++q) add_energy_of(p, gravity, box, (*order)[q], part[b]);
+    for (long q = b * block; q < std::min(n, (b + 1) * block); ++q)
+      add_energy_of(p, gravity, box, order ? (*order)[q] : static_cast<std::size_t>(q), part[b]);  // as energy_of_slots without order
   }
   return sum_in_order(part);
 }
