@@ -145,10 +145,11 @@ struct ThreadScratch {
   } walls;
   std::vector<int> broken_pairs, broken_walls;  // the candidates whose bond broke this step (ForceBlocks)
   WallWorkTerms wall_work;  // a block's wall contacts' terms of the step's work, while the energy log is on
-  // A block's contact sums for the ledger and its state before the motion, where only its own
-  // particle work reads them (finish_block): in cache, not written to per-slot arrays.
+  // A block's contact sums for the ledger, where its motion takes their work, and its state
+  // before the motion, where only its own particle work reads it (finish_block): in cache, not
+  // written to per-slot arrays.
   struct {
-    std::vector<ParticleWork> work;
+    ParticleWorkArrays work;
     std::vector<Vec3> x, v, w;
   } block;
 };
@@ -229,11 +230,11 @@ void find_wall_contacts(const ForceLoopInput& in, ContactList& wc, long r, Threa
 // The loads of the wall contacts `found` (their law done) added to their particles', in order;
 // with `power`, the walls' power f · v_wall at the contact points added to it; with `work` (the
 // energy log), each contact's terms of the step's work (add_wall_contact_work), its forces joining
-// its particle's sums in `block_work` (the block's, from slot lo on). Returns the largest relative
+// its particle's sums in `block_work` (the block's, entry 0 slot lo's). Returns the largest relative
 // overlap.
 template <class Model>
 double add_wall_loads(const ForceLoopInput& in, ContactList& wc, const WallContactsFound& found, ForceBlocks& out, double* power,
-                      WallWorkTerms* work, ParticleWork* block_work, long lo) {
+                      WallWorkTerms* work, const ParticleWork& block_work, long lo) {
   const Particles& p = in.particles;
   double worst = 0;
   for (int e = 0; e < found.size(); ++e) {
@@ -250,7 +251,7 @@ double add_wall_loads(const ForceLoopInput& in, ContactList& wc, const WallConta
     if constexpr (Model::has_rolling) out.torque[i].v += couple;  // eq. R1
     if (power) *power += s.force.dot(found.v_wall[e]);
     if (work)
-      add_wall_contact_work(in.wall_work[k], s, couple, found.v_wall[e], in.geometry[wc.slot_j[k]].spin, in.dt, block_work[i - lo], *work);
+      add_wall_contact_work(in.wall_work[k], s, couple, found.v_wall[e], in.geometry[wc.slot_j[k]].spin, in.dt, block_work, i - lo, *work);
     worst = std::max(worst, relative_overlap_if_larger(found.overlap[e], p.radius[i], worst));
   }
   return worst;
@@ -299,11 +300,11 @@ struct PairResults {
 // in the plain loops, one four-lane register with AVX2; the same operations, so the same bits.
 // With couples (rolling resistance): + M where it is i, - M where it is j, added to the torque last
 // (eq. R1). With the energy log (Ledger): the same runs of its contacts' ContactWork into
-// block_work (from slot lo on), mere candidates' zeros included (pass 1 keeps them zero: no branch per
+// block_work (entry 0 slot lo's), mere candidates' zeros included (pass 1 keeps them zero: no branch per
 // candidate, whose outcome the predictor could not guess).
 template <class V, bool Couples, bool Ledger>
 [[gnu::always_inline]] inline void sum_loads(const ForceBlocks& out, const PairResults& r, const Particles& p, long lo, long hi,
-                                             ParticleWork* block_work) {
+                                             const ParticleWork& block_work) {
   const int* const by_key = out.by_key.data();
   const int* const start = out.by_key_start.data();
   const int* const split = out.by_key_split.data();
@@ -318,8 +319,8 @@ template <class V, bool Couples, bool Ledger>
     if (touched[i] != stamp) {  // mere candidates only: zeros to add
       put(force[i], f);
       put(torque[i], zero);
-      if constexpr (Ledger) put(block_work[i - lo].damping, zero), put(block_work[i - lo].tangential, zero), put(block_work[i - lo].torque_per_radius, zero);
-      if constexpr (Ledger && Couples) put(block_work[i - lo].couple, zero);
+      if constexpr (Ledger) put(block_work.damping[i - lo], zero), put(block_work.tangential[i - lo], zero), put(block_work.torque_per_radius[i - lo], zero);
+      if constexpr (Ledger && Couples) put(block_work.couple[i - lo], zero);
       continue;
     }
     V force_k, torque_k, damping_k, tangential_k;
@@ -340,22 +341,22 @@ template <class V, bool Couples, bool Ledger>
     put(force[i], f);
     if constexpr (Couples) put(torque[i], V(V(radius[i] * arm) + spin));
     else put(torque[i], V(radius[i] * arm));
-    if constexpr (Ledger) put(block_work[i - lo].damping, damping), put(block_work[i - lo].tangential, tangential), put(block_work[i - lo].torque_per_radius, arm);
-    if constexpr (Ledger && Couples) put(block_work[i - lo].couple, spin);  // without couples, never read (StepWorkInput::rolling)
+    if constexpr (Ledger) put(block_work.damping[i - lo], damping), put(block_work.tangential[i - lo], tangential), put(block_work.torque_per_radius[i - lo], arm);
+    if constexpr (Ledger && Couples) put(block_work.couple[i - lo], spin);  // without couples, never read (MotionWork::couples)
   }
 }
 template <bool Couples, bool Ledger>
-void sum_pair_contacts_plain(const ForceBlocks& out, const PairResults& r, const Particles& p, long lo, long hi, ParticleWork* block_work) {
+void sum_pair_contacts_plain(const ForceBlocks& out, const PairResults& r, const Particles& p, long lo, long hi, const ParticleWork& block_work) {
   sum_loads<Vec3, Couples, Ledger>(out, r, p, lo, hi, block_work);
 }
 #ifdef DEM_SIMD_LOOPS
 template <bool Couples, bool Ledger>
-DEM_AVX2 void sum_pair_contacts_avx2(const ForceBlocks& out, const PairResults& r, const Particles& p, long lo, long hi, ParticleWork* block_work) {
+DEM_AVX2 void sum_pair_contacts_avx2(const ForceBlocks& out, const PairResults& r, const Particles& p, long lo, long hi, const ParticleWork& block_work) {
   sum_loads<lanes::Lanes4, Couples, Ledger>(out, r, p, lo, hi, block_work);
 }
 #endif
 template <bool Couples, bool Ledger>
-void sum_pair_contacts(const ForceBlocks& out, const PairResults& r, const Particles& p, long lo, long hi, ParticleWork* block_work) {
+void sum_pair_contacts(const ForceBlocks& out, const PairResults& r, const Particles& p, long lo, long hi, const ParticleWork& block_work) {
 #ifdef DEM_SIMD_LOOPS
   if (out.simd) return sum_pair_contacts_avx2<Couples, Ledger>(out, r, p, lo, hi, block_work);
 #endif
@@ -365,25 +366,26 @@ void sum_pair_contacts(const ForceBlocks& out, const PairResults& r, const Parti
 // The net loads of block b's particles (ForceBlocks): each one's weight and pair contacts, then its
 // wall contacts, then the fluid's force; then, within a step, their motion (`not_finite`: the last
 // slot whose new state is not finite) and, with the energy log, their work (`work`: the thread's
-// sums), their energy taken before they move where asked (ForceBlocks::energy_before_motion).
-// Called once every block holding a pair contact of theirs has been computed.
+// sums; their contacts' taken by the motion), their energy taken before they move where asked
+// (ForceBlocks::energy_before_motion). Called once every block holding a pair contact of theirs
+// has been computed.
 template <class Model>
 double finish_block(const ForceLoopInput& in, const ContactList& pc, ContactList& wc, ForceBlocks& out, long b,
                     ThreadScratch& scratch, long& not_finite, StepWork& work) {
   const Particles& p = in.particles;
   const long lo = b * out.block, hi = std::min(static_cast<long>(p.size()), lo + out.block);
   const PairResults r{pc.sum.data(), pc.rolling.data(), in.work};
-  // The contacts' sums for the ledger: the block's own where its particles' work is taken here,
-  // else the per-slot array the ledger's pass reads.
-  ParticleWork* block_work = nullptr;
-  if (out.work && out.particle_work) {
+  // The contacts' sums for the ledger: the block's own where its motion takes their work, else
+  // the per-slot arrays the motion after the loop reads.
+  ParticleWork block_work;
+  if (out.work.on() && out.motion) {
     scratch.block.work.resize(out.block);
-    block_work = scratch.block.work.data();
-  } else if (out.work) {
-    block_work = out.work + lo;
+    block_work = scratch.block.work.view();
+  } else if (out.work.on()) {
+    block_work = out.work.from(lo);
   }
-  if (block_work) sum_pair_contacts<Model::has_rolling, true>(out, r, p, lo, hi, block_work);
-  else sum_pair_contacts<Model::has_rolling, false>(out, r, p, lo, hi, nullptr);
+  if (block_work.on()) sum_pair_contacts<Model::has_rolling, true>(out, r, p, lo, hi, block_work);
+  else sum_pair_contacts<Model::has_rolling, false>(out, r, p, lo, hi, block_work);
   // Its wall contacts: found run by run, their law on them all, their loads added in that order.
   scratch.walls.found.clear();
   for (int q = in.wall_block_first[b]; q < in.wall_block_first[b + 1]; ++q)
@@ -396,25 +398,30 @@ double finish_block(const ForceLoopInput& in, const ContactList& pc, ContactList
   if (out.step_work) scratch.wall_work.add_to(work);
   if (out.wall_power) out.wall_power[b] = power;
   if (out.body.fluid) out.body.add_fluid(p, lo, hi, out.force.data(), out.simd);
-  // The state before the motion, for the particles' work: the ledger's arrays where it reads them
-  // after the step (move_particles keeps it there), else the block's own copy.
+  // The state before the motion, for the particles' other work (a fluid, prescribed particles,
+  // global damping): the ledger's arrays where it reads them after the step (move_particles keeps
+  // it there), else the block's own copy.
+  const bool other_work = out.particle_work && out.particle_work->any();
   BeforeMotion before{};
-  if (out.particle_work) {
+  if (other_work) {
     const MotionArrays& a = out.motion->arrays;
     if (a.before_x) {
-      before = {a.before_x + lo, a.before_v + lo, a.before_w + lo, block_work};
+      before = {a.before_x + lo, a.before_v + lo, a.before_w + lo};
     } else {
       std::vector<Vec3>&x = scratch.block.x, &v = scratch.block.v, &w = scratch.block.w;
       const bool fluid = out.particle_work->fluid;  // x^n is read only for the fluid's force
       x.resize(fluid ? out.block : 0), v.resize(out.block), w.resize(out.block);
       if (fluid) copy_vectors(p.x.data() + lo, hi - lo, x.data());
       copy_vectors(p.v.data() + lo, hi - lo, v.data()), copy_vectors(p.w.data() + lo, hi - lo, w.data());
-      before = {fluid ? x.data() : nullptr, v.data(), w.data(), block_work};
+      before = {fluid ? x.data() : nullptr, v.data(), w.data()};
     }
   }
   if (out.energy_before_motion) out.energy_before_motion[b] = energy_of_slots(p, out.body.gravity, in.periodic, lo, hi);
-  if (out.motion) not_finite = std::max(not_finite, move_particles(out.motion->arrays, out.motion->constants, lo, hi));
-  if (out.particle_work) add_particle_work(p, *out.particle_work, before, lo, hi, work);
+  if (out.motion) {
+    const MotionWork motion_work{block_work, Model::has_rolling, &work};
+    not_finite = std::max(not_finite, move_particles(out.motion->arrays, out.motion->constants, lo, hi, block_work.on() ? &motion_work : nullptr));
+  }
+  if (other_work) add_particle_work(p, *out.particle_work, before, lo, hi, work);
   return worst;
 }
 

@@ -89,9 +89,9 @@ struct ForceBlocks {
   bool simd;                        // simd_loops_on()
   std::vector<LoadSum>& force;      // per slot: the net force [N] (written, not added to)
   std::vector<LoadSum>& torque;     // per slot: the net torque [N m]
-  ParticleWork* work = nullptr;     // per slot, while the energy log is on (ForceLoopInput::work); written
-                                    // only where the particles' work is not taken in the loop
-                                    // (particle_work null): else each block keeps its own
+  ParticleWork work{};              // per slot, while the energy log is on (ForceLoopInput::work); written
+                                    // only where the motion is not in the loop: else each block
+                                    // keeps its own, which its motion reads (MotionWork)
   double* wall_power = nullptr;     // per block, where asked: Σ f · v_wall over its particles' wall
                                     // contacts (the walls' power, for the energy check) [W]
   // Within a step (Simulation::advance): each block's particles then move (integrate/motion.hpp)
@@ -100,8 +100,8 @@ struct ForceBlocks {
   // by then. Null: the loads only (post-processing, or a step whose checks read the state first).
   const MotionStep* motion = nullptr;
   // While the energy log is on (with `work`): the step's work the loop adds, its wall contacts'
-  // (add_wall_contact_work) and, where `particle_work` is given (with `motion`), each block's
-  // particles' once they have moved (add_particle_work).
+  // (add_wall_contact_work), with `motion` its particles' contacts' as they move (MotionWork) and,
+  // where `particle_work` is given, the rest of their work once they have moved (add_particle_work).
   StepWork* step_work = nullptr;
   const StepWorkInput* particle_work = nullptr;
   // Where given (with `motion`): per block, its particles' mechanical energy just before they move

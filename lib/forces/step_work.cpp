@@ -13,19 +13,12 @@ void add_particle_work(const Particles& p, const StepWorkInput& in, const Before
   // pass (add_all), in place of a FixedSum add per particle and term behind a test of its sums
   // (bench/results/design.md). A term that does not apply is +0, which changes no bit of a FixedSum.
   constexpr long kRun = 256;
-  double damping[kRun], tangential[kRun], rolling[kRun], fluid[kRun], prescribed[kRun], global[kRun];
+  double fluid[kRun], prescribed[kRun], global[kRun];
   for (long first = lo; first < hi; first += kRun) {
     const long n = std::min(kRun, hi - first);
     for (long e = 0; e < n; ++e) {
       const long k = first + e, b = k - lo;
       const Vec3 v = Vec3(0.5 * (before.v[b] + p.v[k])), w = Vec3(0.5 * (before.w[b] + p.w[k]));
-      // eq. P33-P34, P41: its contacts' forces as the force loop summed them for it, with its mean
-      // velocities. Without a branch: a particle without contacts has zero sums, so adds +-0 (its
-      // velocities are finite: the step stops before the ledger reads a sum otherwise).
-      const ParticleWork& pw = before.work[b];
-      damping[e] = pw.damping.v.dot(v) * dt;
-      tangential[e] = (pw.tangential.v.dot(v) + p.radius[k] * pw.torque_per_radius.v.dot(w)) * dt;
-      if (in.rolling) rolling[e] = pw.couple.v.dot(w) * dt;
       // eq. P40: the fluid's force as the force loop took it (x^n, v^{n-1/2}).
       if (in.fluid) fluid[e] = in.fluid->force(p.radius[k], p.void_fraction[k], before.x[b], before.v[b], in.gravity).dot(v) * dt;
       const std::uint8_t fixed = in.any_fixed ? p.fixed[k] : 0;
@@ -34,9 +27,6 @@ void add_particle_work(const Particles& p, const StepWorkInput& in, const Before
       if (global_damping)  // eq. P35: the integrator's m (v+ - v-) = F Δt - α m v̄ Δt takes α m |v̄|² Δt.
         global[e] = !fixed ? (in.alpha_r * p.mass[k] * v.squaredNorm() + in.alpha_theta * p.inertia(k) * w.squaredNorm()) * dt : 0.0;
     }
-    add_all(s.damping, damping, n);
-    add_all(s.tangential, tangential, n);
-    if (in.rolling) add_all(s.rolling, rolling, n);
     if (in.fluid) add_all(s.fluid, fluid, n);
     if (in.any_fixed) add_all(s.prescribed, prescribed, n);
     if (global_damping) add_all(s.global, global, n);

@@ -9,6 +9,7 @@
 
 #include "core/types.hpp"
 #include "state/load_sum.hpp"
+#include "state/particle_work.hpp"
 #include "state/particles.hpp"
 #include "state/periodic.hpp"
 
@@ -46,6 +47,15 @@ struct MotionArrays {
   Vec3* before_w = nullptr;
 };
 
+// While the energy log is on: the particles' contact sums (state/particle_work.hpp), entry 0 the
+// first moved particle's, whose work the motion takes as each particle moves, with its velocities
+// before and after (contact_work_terms), adding it to `sums` (exactly: any order, the same bits).
+struct MotionWork {
+  ParticleWork contacts;
+  bool couples;     // the contact law has rolling couples (else ParticleWork::couple is unread)
+  StepWork* sums;   // its damping, tangential and rolling terms
+};
+
 // A step's motion as the force loop takes it, block by block once each block's loads are summed
 // (forces/force_loop.hpp, ForceBlocks::motion).
 struct MotionStep {
@@ -56,8 +66,9 @@ struct MotionStep {
 // Particles [first, last): their state kept where asked (before_x...), then held ones stop,
 // prescribed ones move at their own v and w, the others under their loads (all wrapped into the
 // period).
+// With `work`, their contacts' work (MotionWork).
 // Returns the last particle whose new state is not finite (NaN or Inf in x, v or w makes a
 // coordinate of x + v + w NaN or Inf; so does a sum beyond 1e308: a state as broken), or -1.
-long move_particles(const MotionArrays& a, const MotionConstants& c, long first, long last);
+long move_particles(const MotionArrays& a, const MotionConstants& c, long first, long last, const MotionWork* work = nullptr);
 
 }  // namespace dem

@@ -122,7 +122,7 @@ void account_held(const PairParams& q, const Vec3& spring, const Vec3& n, double
 struct StepSums {
   FixedSum kin_t, kin_r, potential;
   ContactTerms c;
-  StepWork work;  // the particles' work, where the force loop did not add it
+  StepWork work;  // the particles' work other than their contacts', where the force loop did not add it
   void add(const StepSums& o) {
     kin_t.add(o.kin_t), kin_r.add(o.kin_r), potential.add(o.potential);
     c.released.add(o.c.released), c.elastic.add(o.c.elastic), c.springs.add(o.c.springs), c.rolling_springs.add(o.c.rolling_springs);
@@ -133,9 +133,7 @@ struct StepSums {
 }  // namespace
 
 StepWorkInput Simulation::ledger_work_input(const FluidField* fluid, bool any_fixed) const {
-  const bool rolling = !force_variant_ || force_variant_->rolling != RollingLaw::None;  // else no couples
-  return {block_force_.data(), block_torque_.data(),
-          fluid, params.gravity, params.alpha_r, params.alpha_theta, dt, rolling, any_fixed};
+  return {block_force_.data(), block_torque_.data(), fluid, params.gravity, params.alpha_r, params.alpha_theta, dt, any_fixed};
 }
 
 void Simulation::account_energy(bool any_fixed) {
@@ -150,7 +148,8 @@ void Simulation::account_energy(bool any_fixed) {
   std::optional<FluidField> fluid;
   if (params.fluid.on()) fluid.emplace(params.fluid);
   const StepWorkInput work_input = ledger_work_input(fluid ? &*fluid : nullptr, any_fixed);
-  const long particle_work_count = ledger_particles_done_ ? 0 : count, measure_count = measure ? count : 0;
+  // The particles' work other than their contacts' (which the motion took): where any applies.
+  const long particle_work_count = ledger_particles_done_ || !work_input.any() ? 0 : count, measure_count = measure ? count : 0;
   // eq. P30: the kinetic energy at the half step, the potential at the mean of x^n and x^{n+1} = x^{n+1} - v^{n+1/2} Δt/2.
   auto measure_particle = [&](std::size_t k, StepSums& s) __attribute__((always_inline)) {
     s.kin_t.add(0.5 * p.mass[k] * p.v[k].squaredNorm());
@@ -163,7 +162,7 @@ void Simulation::account_energy(bool any_fixed) {
     return breaks && std::binary_search(broken.begin(), broken.end(), static_cast<int>(k));
   };
   auto account_pair = [&](auto normal, std::size_t k, bool broke, ContactTerms& t) {
-    // Its work this step is its particles' (add_particle_work); what it holds, where it broke or is measured.
+    // Its work this step is its particles' (the motion's: MotionWork); what it holds, where it broke or is measured.
     if (!broke && !(measure && pairs_.active[k])) [[likely]]
       return;
     const int i = pairs_.slot_i[k], j = pairs_.slot_j[k];
@@ -209,7 +208,7 @@ void Simulation::account_energy(bool any_fixed) {
       for (long k = 0; k < measure_count; ++k) measure_particle(k, mine);
 #pragma omp for schedule(static) nowait
       for (long lo = 0; lo < particle_work_count; lo += 1024) {
-        const BeforeMotion before{x0 + lo, v0 + lo, w0 + lo, ledger_particle_work_.data() + lo};
+        const BeforeMotion before{x0 + lo, v0 + lo, w0 + lo};
         add_particle_work(p, work_input, before, lo, std::min(particle_work_count, lo + 1024), mine.work);
       }
 #pragma omp for schedule(static) nowait

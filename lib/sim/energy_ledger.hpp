@@ -3,9 +3,10 @@
 // energy log): each step it adds what the step dissipated, released and put in, and, at the steps
 // whose figures are read (measure_now), measures what the particles and contacts hold. The work
 // is taken where it arises (forces/step_work.hpp): each contact's law leaves its dashpot and
-// tangential forces, the force loop sums them per particle and, as each block moves, takes their
-// work with the velocities. The pass after the motion (account_energy) takes what is held, the
-// energy of bonds that broke, and the particles' work on a step whose motion ran apart. A run
+// tangential forces, the force loop sums them per particle and the motion takes their work as it
+// moves each particle (integrate/motion.hpp MotionWork). The pass after the motion
+// (account_energy) takes what is held, the energy of bonds that broke, and the particles' other
+// work (a fluid, prescribed particles, global damping) on a step whose motion ran apart. A run
 // that does not ask pays one test per step and one per group of contacts of the force loop.
 //
 // The scheme follows the integrator (leapfrog): the force at step n acts on the velocity between

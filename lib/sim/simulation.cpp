@@ -112,7 +112,7 @@ void Simulation::compute_loads(const MotionStep* motion, bool measure_energy) {
   const BodyForces body{params.gravity, fluid ? &params.fluid : nullptr, &fluid_grains_};
   ForceBlocks loads{params.load_block, block_first_, block_needs_, needed_from_, by_key_start_, by_key_split_, by_key_, force_times_,
                     block_done_,       touched_,       ++force_epoch_, body, simd_loops_on(), block_force_, block_torque_,
-                    ledger.on ? ledger_particle_work_.data() : nullptr, sum_wall_power ? wall_power_.data() : nullptr,
+                    ledger.on ? ledger_particle_work_.view() : ParticleWork{}, sum_wall_power ? wall_power_.data() : nullptr,
                     motion};
   check_energy_in_loop_ = motion && measure_energy;
   if (check_energy_in_loop_) {
@@ -608,6 +608,11 @@ void Simulation::integrate(bool any_fixed, bool keep_state) {
   const long block = params.load_block;
   const long blocks = (n + block - 1) / block;
   integrate_times_.fit(blocks, [&](long b) { return std::min(block, n - b * block); });  // particles, until timed
+  // With the energy log, the contacts' work of the particles as they move (MotionWork), from the
+  // force loop's per-slot sums, each thread's into its own sums, added in FixedSum's integers.
+  const bool work = ledger.on;
+  const bool couples = !force_variant_ || force_variant_->rolling != RollingLaw::None;  // else no couples were summed
+  const ParticleWork sums = work ? ledger_particle_work_.view() : ParticleWork{};
   // Each thread takes its own copies of these (firstprivate), kept in registers: shared, they are
   // read through OpenMP's record of shared variables, which the compiler reloaded after every store
   // (Eigen's stores are SSE intrinsics, which may alias anything; bench/results/design.md).
@@ -615,11 +620,17 @@ void Simulation::integrate(bool any_fixed, bool keep_state) {
   {
     const long threads = omp_get_num_threads(), t = omp_get_thread_num();
     const long start = integrate_times_.run_start(t, threads), end = integrate_times_.run_start(t + 1, threads);
+    StepWork mine;
     for (long b = start; b < end; ++b) {
       const long tb = BlockTimes::now();
       const long lo = b * block, hi = std::min(n, lo + block);
-      bad = std::max(bad, move_particles(a, c, lo, hi));
+      const MotionWork block_work{sums.from(lo), couples, &mine};
+      bad = std::max(bad, move_particles(a, c, lo, hi, work ? &block_work : nullptr));
       integrate_times_.record(b, tb);
+    }
+    if (work) {
+#pragma omp critical(dem_integrate_work)
+      ledger_work_.add(mine);  // exact: in any order
     }
   }
   if (bad >= 0) report_not_finite(bad);

@@ -282,8 +282,8 @@ class Simulation {
   bool ledger_work_zeros_ = false;  // every candidate of ledger_contact_work_ that is no contact holds zeros
                                     // (made and kept so by pass 1 while the log is on; lost at a rebuild)
   std::vector<ContactWork> ledger_wall_work_;     // while ledger.on: the same, per wall candidate
-  std::vector<ParticleWork> ledger_particle_work_;  // while ledger.on, the motion apart: the force loop's, per slot
-  StepWork ledger_work_;  // while ledger.on: the step's work the force loop added (ForceBlocks::step_work)
+  ParticleWorkArrays ledger_particle_work_;  // while ledger.on, the motion apart: the force loop's contact sums, per slot
+  StepWork ledger_work_;  // while ledger.on: the step's work the force loop and the motion added (ForceBlocks::step_work)
   bool ledger_particles_done_ = false;  // whether that includes the particles' (the motion ran in the loop)
   int step_threads_ = 0;                // step_threads()
   std::optional<ModelChoice> force_variant_;  // the force loop's this step (force_loop.hpp's ForceVariant)
