@@ -39,8 +39,8 @@ struct ParticleWork {
   LoadSum* torque_per_radius = nullptr;  // Σ n x f_t (times the radius: the contacts' torque)
   LoadSum* couple = nullptr;             // Σ ± M (rolling resistance); written only where the law has couples
   bool on() const { return damping != nullptr; }
-  // The view whose entry 0 is this one's entry k.
-  ParticleWork from(long k) const { return {damping + k, tangential + k, torque_per_radius + k, couple + k}; }
+  // The view whose entry 0 is this one's entry k (none where this is none).
+  ParticleWork from(long k) const { return on() ? ParticleWork{damping + k, tangential + k, torque_per_radius + k, couple + k} : ParticleWork{}; }
 };
 
 // The arrays a ParticleWork views.
