@@ -6,7 +6,9 @@
 // are only read.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <random>
 #include <string>
@@ -122,6 +124,56 @@ TEST(Motion, FourAtATimeGiveTheDefinitionsBits) {
           EXPECT_TRUE(same_bits(runs[0].x, runs[1].x));
           EXPECT_TRUE(same_bits(runs[0].v, runs[1].v));
           EXPECT_TRUE(same_bits(runs[0].w, runs[1].w));
+        }
+      }
+}
+
+// The contacts' work the motion takes as it moves (MotionWork, state/particle_work.hpp): each
+// particle's sums times its mean velocities v̄ = (v before + v after)/2 and w̄, by the definition
+// (docs/physics.md eq. P33-P34, P41: D · v̄ Δt, (T · v̄ + a A · w̄) Δt, M · w̄ Δt), summed exactly:
+// four at a time as one by one, with couples and without, held particles among them or not, over
+// ranges within one of the motion's runs of 256 particles and across them, ending in one to three
+// particles past a group of four.
+TEST(Motion, TakesTheContactsWorkOfTheDefinitionAsItMoves) {
+  const long n = 1003;
+  ParticleWorkArrays sums;
+  sums.resize(n);
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const auto vec = [&](double s) { return Vec3(s * u(rng), s * u(rng), s * u(rng)); };
+  for (long i = 0; i < n; ++i)
+    sums.damping[i].v = vec(1e-3), sums.tangential[i].v = vec(1e-3), sums.torque_per_radius[i].v = vec(1e-3), sums.couple[i].v = vec(1e-6);
+  const auto dot = [](const Vec3& a, const Vec3& b) { return (a.x() * b.x() + a.y() * b.y()) + a.z() * b.z(); };
+  for (bool couples : {false, true})
+    for (bool any_fixed : {false, true})
+      for (auto [first, last] : {std::pair<long, long>{0, 1003}, {1, 6}, {498, 523}, {250, 517}}) {
+        const std::string what = std::string(couples ? "couples" : "no couples") + (any_fixed ? ", held ones" : "") + ", particles " +
+                                 std::to_string(first) + " to " + std::to_string(last);
+        // By the definition, from the state before the step.
+        const MotionCase before(n);
+        FixedSum damping, tangential, rolling;
+        for (long i = first; i < last; ++i) {
+          const Expected e = definition(before, i, any_fixed);
+          Vec3 v, w;
+          for (int d = 0; d < 3; ++d) v[d] = 0.5 * (before.v[i][d] + e.v[d]), w[d] = 0.5 * (before.w[i][d] + e.w[d]);
+          damping.add(dot(sums.damping[i].v, v) * before.c.dt);
+          tangential.add((dot(sums.tangential[i].v, v) + before.radius[i] * dot(sums.torque_per_radius[i].v, w)) * before.c.dt);
+          if (couples) rolling.add(dot(sums.couple[i].v, w) * before.c.dt);
+        }
+        ASSERT_NE(damping.value(), 0.0) << what;
+        for (int simd : widths()) {
+          MotionCase m(n);
+          set_simd_loops(simd);
+          StepWork s;
+          const MotionWork work{sums.view().from(first), couples, &s};
+          EXPECT_EQ(move_particles(m.arrays(any_fixed), m.c, first, last, &work), -1) << what;
+          set_simd_loops(true);
+          const std::string how = what + (simd ? ", four at a time" : ", one by one");
+          EXPECT_EQ(std::bit_cast<std::uint64_t>(s.damping.value()), std::bit_cast<std::uint64_t>(damping.value())) << how;
+          EXPECT_EQ(std::bit_cast<std::uint64_t>(s.tangential.value()), std::bit_cast<std::uint64_t>(tangential.value())) << how;
+          EXPECT_EQ(std::bit_cast<std::uint64_t>(s.rolling.value()), std::bit_cast<std::uint64_t>(rolling.value())) << how;
+          // The motion itself as without the work (Motion.FourAtATimeGiveTheDefinitionsBits).
+          for (long i = first; i < last; ++i) ASSERT_EQ(m.v[i], definition(before, i, any_fixed).v) << how << ", particle " << i;
         }
       }
 }
