@@ -8,7 +8,7 @@ namespace dem {
 
 void add_particle_work(const Particles& p, const StepWorkInput& in, const BeforeMotion& before, long lo, long hi, StepWork& s) {
   const double dt = in.dt;
-  const bool global_damping = in.alpha_r != 0 || in.alpha_theta != 0;
+  const bool global_damping = in.global_damping();
   // A run of particles' terms first, without a branch, then each term's sum over the run in one
   // pass (add_all), in place of a FixedSum add per particle and term behind a test of its sums
   // (bench/results/design.md). A term that does not apply is +0, which changes no bit of a FixedSum.

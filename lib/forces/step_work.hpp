@@ -12,7 +12,6 @@
 
 #include "contact/contact_list.hpp"
 #include "contact/kinematics.hpp"
-#include "core/fixed_sum.hpp"
 #include "core/types.hpp"
 #include "forces/fluid.hpp"
 #include "state/load_sum.hpp"
@@ -31,8 +30,9 @@ struct StepWorkInput {
   double alpha_r, alpha_theta;  // the global damping (SimParams)
   double dt;
   bool any_fixed;  // Particles::fixed is to be read
+  bool global_damping() const { return alpha_r != 0 || alpha_theta != 0; }
   // Whether add_particle_work has a term to take (a fluid, prescribed particles or global damping).
-  bool any() const { return fluid || any_fixed || alpha_r != 0 || alpha_theta != 0; }
+  bool any() const { return fluid || any_fixed || global_damping(); }
 };
 
 // The state before the motion of particles [lo, hi), each array's first entry slot lo's: the
