@@ -286,11 +286,11 @@ TEST(NeighbourList, PeriodicContactsEqualBruteForceEveryStep) {
 
 // Pair lists are stored along the particles' storage order (place_by_storage), not in key order:
 // through a rebuild the history still follows the keys, and active_contacts lists key order.
-// The displacement that decides a rebuild: four particles at a time (AVX2) as one by one, and both
-// the largest |d|^2 over the particles by the definition (d through PeriodicBox::nearest), with
-// the largest move placed in each lane of a group of four and in the remainder, across a periodic
-// boundary and not, in ranges of every length modulo 4.
-TEST(NeighbourList, LargestMoveIsTheDefinitions) {
+// The displacements that decide a rebuild: four particles at a time (AVX2) as one by one, and both
+// the definitions (d through PeriodicBox::nearest): the largest |d|^2 over the particles and the
+// smallest and largest d along each axis, with the largest move placed in each lane of a group of
+// four and in the remainder, across a periodic boundary and not, in ranges of every length modulo 4.
+TEST(NeighbourList, MovesAreTheDefinitions) {
   std::mt19937_64 rng(3);
   std::uniform_real_distribution<double> u(0, 1);
   PeriodicBox box;
@@ -310,17 +310,95 @@ TEST(NeighbourList, LargestMoveIsTheDefinitions) {
       for (long first : {0L, 1L, 2L, 3L})
         for (long last : {100L, 101L, 102L, 103L}) {
           double expected = 0;
-          for (long k = first; k < last; ++k) expected = std::max(expected, b.nearest(moved[k] - from[k]).squaredNorm());
-          std::vector<double> got;
+          Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
+          for (long k = first; k < last; ++k) {
+            const Vec3 d = b.nearest(moved[k] - from[k]);
+            expected = std::max(expected, d.squaredNorm());
+            lo = lo.cwiseMin(d), hi = hi.cwiseMax(d);
+          }
+          std::vector<Moves> got;
           for (bool simd : {false, simd_loops_available()}) {
             set_simd_loops(simd);
-            got.push_back(largest_move2(moved.data(), from.data(), b, first, last));
+            got.push_back(moves_since(moved.data(), from.data(), b, first, last));
           }
           set_simd_loops(true);
-          for (double g : got) EXPECT_EQ(g, expected) << "largest at " << big << ", particles " << first << " to " << last;
+          for (const Moves& g : got) {
+            EXPECT_EQ(g.largest2, expected) << "largest at " << big << ", particles " << first << " to " << last;
+            for (int axis = 0; axis < 3; ++axis) {
+              EXPECT_EQ(g.lo[axis], lo[axis]);
+              EXPECT_EQ(g.hi[axis], hi[axis]);
+            }
+          }
           if (big >= first && big < last) EXPECT_NEAR(std::sqrt(expected), b.any() ? 0.005 : 1.995, 1e-3);
         }
     }
+}
+
+// Moves::approach() bounds how much closer any two particles came (docs/physics.md eq. P85), by
+// all pairs: displacements in every direction, a common drift with a little scatter, one particle
+// alone moving, all the same, none. It is never more than twice the largest move (the criterion
+// before it), and far less where the particles move together.
+TEST(NeighbourList, ApproachBoundsEveryPairsApproach) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const Vec3 drift(3e-4, -2e-4, 5e-4);
+  for (int kind = 0; kind < 5; ++kind) {
+    std::vector<Vec3> from(57), to(57);
+    for (std::size_t k = 0; k < from.size(); ++k) {
+      from[k] = Vec3(u(rng), u(rng), u(rng));
+      const Vec3 scatter(u(rng), u(rng), u(rng));
+      const Vec3 d = kind == 0 ? Vec3(1e-4 * scatter) : kind == 1 ? Vec3(drift + 1e-6 * scatter) : kind == 2 ? Vec3(k == 9 ? drift : Vec3::Zero())
+                     : kind == 3                                                                 ? drift
+                                                                                                  : Vec3::Zero();
+      to[k] = from[k] + d;
+    }
+    SCOPED_TRACE(kind);
+    for (bool simd : {false, simd_loops_available()}) {
+      set_simd_loops(simd);
+      const Moves m = moves_since(to.data(), from.data(), PeriodicBox(), 0, static_cast<long>(to.size()));
+      double closer = 0;  // the most any pair came closer: |d_a - d_b|
+      for (std::size_t a = 0; a < to.size(); ++a)
+        for (std::size_t b = a + 1; b < to.size(); ++b) closer = std::max(closer, ((to[a] - from[a]) - (to[b] - from[b])).norm());
+      EXPECT_GE(m.approach(), closer * (1 - 1e-12));
+      EXPECT_LE(m.approach(), 2 * std::sqrt(m.largest2));
+      if (kind == 1) EXPECT_LT(m.approach(), 0.01 * 2 * std::sqrt(m.largest2)) << "moving together";
+      if (kind == 3) EXPECT_LT(m.approach(), 1e-15) << "the same move: only the positions' round-off";
+      if (kind == 4) EXPECT_EQ(m.approach(), 0.0);
+    }
+    set_simd_loops(true);
+  }
+}
+
+// A cloud moving together, far from any wall, keeps its list however far it goes: its particles
+// come no closer to each other (eq. P85), though each moves a hundred skins. Two of them aimed at
+// each other then make it rebuild in time: every step's contacts are the definition's.
+TEST(NeighbourList, ACloudMovingTogetherKeepsItsList) {
+  std::mt19937_64 rng(8);
+  std::uniform_real_distribution<double> u(0, 1);
+  Simulation sim = box_between_plates(0.1);
+  sim.walls.clear();
+  sim.params.gravity = Vec3(0, 0, -9.81);
+  sim.params.skin = 1e-4;
+  for (int k = 0; k < 125; ++k)  // a 5 x 5 x 5 lattice, 2 mm spheres 1 cm apart, each nudged
+    sim.particles.add(k, Vec3(0.01 * (k % 5) + 0.002 * u(rng), 0.01 * (k / 5 % 5) + 0.002 * u(rng), 0.01 * (k / 25) + 0.002 * u(rng)),
+                      0.002, 2500, 0);
+  for (std::size_t k = 0; k < sim.particles.size(); ++k) sim.particles.v[k] = Vec3(0.5, -0.2, 1.0);
+  sim.dt = 1e-5;
+  for (int s = 0; s < 2000; ++s) sim.advance();
+  const double moved = 0.02 * Vec3(0.5, -0.2, 1.0 - 0.5 * 9.81 * 0.02).norm();  // 2,000 steps of 1e-5 s
+  EXPECT_GT(moved, 100 * sim.params.skin);
+  EXPECT_EQ(sim.neighbour_builds(), 1) << "the first build only";
+  // Two neighbours sent towards each other at 1 m/s: 4 to 8 mm apart, they touch within 1,000 steps.
+  sim.particles.v[0] += Vec3(0.5, 0, 0), sim.particles.v[1] -= Vec3(0.5, 0, 0);
+  std::size_t touching = 0;
+  for (int s = 0; s < 1000; ++s) {
+    const std::vector<FoundContact> pairs = brute_force(sim.particles);
+    sim.advance();
+    ASSERT_EQ(sim.pair_contacts().size(), pairs.size()) << "step " << s;
+    touching += pairs.size();
+  }
+  EXPECT_GT(touching, 0u) << "the two must have met";
+  EXPECT_GT(sim.neighbour_builds(), 1);
 }
 
 TEST(ContactList, HistoryFollowsKeysWhereverStored) {

@@ -17,29 +17,32 @@ bool NeighbourList::needs_rebuild(const Particles& p, const PeriodicBox& box, co
   if (!valid_ || margin != margin_build_ || skin != skin_build_ || !(box == box_build_) || p.size() != x_build_.size() ||
       4 * walls.size() != wall_build_.size())
     return true;
-  // Two particles approach by at most twice the largest displacement, a particle and a wall by the
-  // particle's displacement plus the wall's (a planar polygon moves no further than its vertices).
-  // Across a periodic boundary the displacement is the nearest image's.
-  double dp2 = 0;
+  // Two particles approach by at most Moves::approach() (twice the largest displacement, or less
+  // where they moved together), a particle and a wall by the particle's displacement plus the
+  // wall's (a planar polygon moves no further than its vertices), where there are walls. Across a
+  // periodic boundary the displacement is the nearest image's.
+  Moves moved;
   int changed = 0;  // ids or fixed flags
   const long n = static_cast<long>(p.size());
-#pragma omp parallel reduction(max : dp2) reduction(| : changed)
+#pragma omp parallel reduction(| : changed)
   {
     const long threads = omp_get_num_threads(), t = omp_get_thread_num();
     const long first = n * t / threads, last = n * (t + 1) / threads;
-    dp2 = largest_move2(p.x.data(), x_build_.data(), box, first, last);
+    const Moves mine = moves_since(p.x.data(), x_build_.data(), box, first, last);
+#pragma omp critical(dem_moves)
+    moved.add(mine);  // smallest and largest values: the same for any order
     changed = last > first && (std::memcmp(p.id.data() + first, id_build_.data() + first, (last - first) * sizeof(Index)) != 0 ||
                                std::memcmp(p.fixed.data() + first, fixed_build_.data() + first, last - first) != 0);
   }
   if (changed) return true;
-  const double dp = std::sqrt(dp2);
+  const double dp = std::sqrt(moved.largest2);
   double dw2 = 0;
   const long nw = static_cast<long>(walls.size());
 #pragma omp parallel for schedule(static) reduction(max : dw2) if (nw > 1000)
   for (long w = 0; w < nw; ++w)
     for (int v = 0; v < walls[w].count; ++v) dw2 = std::max(dw2, (walls[w].vertices[v] - wall_build_[4 * w + v]).squaredNorm());
   const double dw = std::sqrt(dw2);
-  return 2 * dp > skin || dp + dw > skin;
+  return moved.approach() > skin || (nw > 0 && dp + dw > skin);
 }
 
 void NeighbourList::keep_only(const Kept& keep) {
