@@ -149,8 +149,10 @@ void LinkedCells::find_near_pairs(const Particles& p, const PeriodicBox& box, st
   const Index* const id = p.id.data();
 #pragma omp parallel num_threads(threads)
   {
-    std::vector<FoundContact>& mine = parts_[omp_get_thread_num()].found;
+    SearchPart& part = parts_[omp_get_thread_num()];
+    std::vector<FoundContact>& mine = part.found;
     mine.clear();
+    mine.reserve(part.last_pairs + part.last_pairs / 8);
     auto test = [&, x, radius, fixed, id, fixed_pairs](int a, int b) {
       if (!fixed_pairs && both_fixed(fixed[a], fixed[b])) return;
       const double r = radius[a] + radius[b];
@@ -224,6 +226,7 @@ void LinkedCells::find_near_pairs(const Particles& p, const PeriodicBox& box, st
           for (int o = cell_first[cell]; o < cell_first[cell + 1]; ++o) test(cell_slots[m], cell_slots[o]);
       }
     }
+    part.last_pairs = mine.size();
   }
   // Grouped by the smaller slot (a counting sort: in any order within a group), then each group put
   // in key order: an order that depends on neither the threads nor the cells. Each part is counted
@@ -270,8 +273,10 @@ void LinkedCells::find_near_walls(const Particles& p, const std::vector<WallGeom
   const double grow = rmax_ + margin;
 #pragma omp parallel num_threads(threads)
   {
-    std::vector<FoundContact>& mine = parts_[omp_get_thread_num()].found;
+    SearchPart& part = parts_[omp_get_thread_num()];
+    std::vector<FoundContact>& mine = part.found;
     mine.clear();
+    mine.reserve(part.last_walls + part.last_walls / 8);
     // One element at a time: a box has six walls, each covering thousands of cells.
 #pragma omp for schedule(dynamic, 1)
     for (long w = 0; w < nw; ++w) {
@@ -301,6 +306,7 @@ void LinkedCells::find_near_walls(const Particles& p, const std::vector<WallGeom
             }
           }
     }
+    part.last_walls = mine.size();
   }
   join_and_release(parts_, out);
 }

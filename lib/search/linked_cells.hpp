@@ -18,6 +18,9 @@ namespace dem {
 // sizes share a line would pass it back and forth at every pair found.
 struct alignas(64) SearchPart {
   std::vector<FoundContact> found;
+  // How many it found at the last search of pairs and of walls: the room reserved at the next
+  // (grown by push_back instead, each search copied its pairs over several times).
+  std::size_t last_pairs = 0, last_walls = 0;
 };
 
 class LinkedCells {
