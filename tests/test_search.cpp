@@ -370,35 +370,54 @@ TEST(NeighbourList, ApproachBoundsEveryPairsApproach) {
 }
 
 // A cloud moving together, far from any wall, keeps its list however far it goes: its particles
-// come no closer to each other (eq. P85), though each moves a hundred skins. Two of them aimed at
-// each other then make it rebuild in time: every step's contacts are the definition's.
+// come no closer to each other (eq. P85), though each moves a hundred skins, falling in open space
+// or drifting across the periods of a periodic box (displacements through the nearest image). Two
+// of them aimed at each other then make it rebuild in time: every step's contacts are the
+// definition's.
 TEST(NeighbourList, ACloudMovingTogetherKeepsItsList) {
-  std::mt19937_64 rng(8);
-  std::uniform_real_distribution<double> u(0, 1);
-  Simulation sim = box_between_plates(0.1);
-  sim.walls.clear();
-  sim.params.gravity = Vec3(0, 0, -9.81);
-  sim.params.skin = 1e-4;
-  for (int k = 0; k < 125; ++k)  // a 5 x 5 x 5 lattice, 2 mm spheres 1 cm apart, each nudged
-    sim.particles.add(k, Vec3(0.01 * (k % 5) + 0.002 * u(rng), 0.01 * (k / 5 % 5) + 0.002 * u(rng), 0.01 * (k / 25) + 0.002 * u(rng)),
-                      0.002, 2500, 0);
-  for (std::size_t k = 0; k < sim.particles.size(); ++k) sim.particles.v[k] = Vec3(0.5, -0.2, 1.0);
-  sim.dt = 1e-5;
-  for (int s = 0; s < 2000; ++s) sim.advance();
-  const double moved = 0.02 * Vec3(0.5, -0.2, 1.0 - 0.5 * 9.81 * 0.02).norm();  // 2,000 steps of 1e-5 s
-  EXPECT_GT(moved, 100 * sim.params.skin);
-  EXPECT_EQ(sim.neighbour_builds(), 1) << "the first build only";
-  // Two neighbours sent towards each other at 1 m/s: 4 to 8 mm apart, they touch within 1,000 steps.
-  sim.particles.v[0] += Vec3(0.5, 0, 0), sim.particles.v[1] -= Vec3(0.5, 0, 0);
-  std::size_t touching = 0;
-  for (int s = 0; s < 1000; ++s) {
-    const std::vector<FoundContact> pairs = brute_force(sim.particles);
-    sim.advance();
-    ASSERT_EQ(sim.pair_contacts().size(), pairs.size()) << "step " << s;
-    touching += pairs.size();
+  for (bool periodic : {false, true}) {
+    SCOPED_TRACE(periodic ? "drifting across periodic boundaries" : "falling in open space");
+    std::mt19937_64 rng(8);
+    std::uniform_real_distribution<double> u(0, 1);
+    Simulation sim = box_between_plates(0.1);
+    sim.walls.clear();
+    sim.params.skin = 1e-4;
+    for (int k = 0; k < 125; ++k)  // a 5 x 5 x 5 lattice, 2 mm spheres 1 cm apart, each nudged
+      sim.particles.add(k, Vec3(0.01 * (k % 5) + 0.002 * u(rng), 0.01 * (k / 5 % 5) + 0.002 * u(rng), 0.01 * (k / 25) + 0.002 * u(rng)),
+                        0.002, 2500, 0);
+    PeriodicBox box;
+    Vec3 v(0.5, -0.2, 1.0);
+    sim.params.gravity = Vec3(0, 0, -9.81);
+    if (periodic) {  // periods of 5 cm along x and y: the lattice fills them
+      box.axis = {true, true, false};
+      box.hi = Vec3(0.05, 0.05, 0);
+      sim.set_periodic(box);
+      v.z() = 0, sim.params.gravity = Vec3::Zero();
+    }
+    for (std::size_t k = 0; k < sim.particles.size(); ++k) sim.particles.v[k] = v;
+    sim.dt = 1e-5;
+    std::size_t wrapped = 0;
+    for (int s = 0; s < 2000; ++s) {
+      sim.advance();
+      if (s == 1999)
+        for (std::size_t k = 0; k < sim.particles.size(); ++k) wrapped += sim.particles.image[k] != Vec3i::Zero();
+    }
+    const double moved = 0.02 * Vec3(v.x(), v.y(), v.z() + 0.5 * sim.params.gravity.z() * 0.02).norm();  // 2,000 steps of 1e-5 s
+    EXPECT_GT(moved, 100 * sim.params.skin);
+    if (periodic) EXPECT_GT(wrapped, 10u) << "particles must have crossed a boundary";
+    EXPECT_EQ(sim.neighbour_builds(), 1) << "the first build only";
+    // Two neighbours sent towards each other at 1 m/s: 4 to 8 mm apart, they touch within 1,000 steps.
+    sim.particles.v[0] += Vec3(0.5, 0, 0), sim.particles.v[1] -= Vec3(0.5, 0, 0);
+    std::size_t touching = 0;
+    for (int s = 0; s < 1000; ++s) {
+      const std::vector<FoundContact> pairs = brute_force(sim.particles, box);
+      sim.advance();
+      ASSERT_EQ(sim.pair_contacts().size(), pairs.size()) << "step " << s;
+      touching += pairs.size();
+    }
+    EXPECT_GT(touching, 0u) << "the two must have met";
+    EXPECT_GT(sim.neighbour_builds(), 1);
   }
-  EXPECT_GT(touching, 0u) << "the two must have met";
-  EXPECT_GT(sim.neighbour_builds(), 1);
 }
 
 TEST(ContactList, HistoryFollowsKeysWhereverStored) {
