@@ -342,17 +342,23 @@ TEST(NeighbourList, ApproachBoundsEveryPairsApproach) {
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> u(-1, 1);
   const Vec3 drift(3e-4, -2e-4, 5e-4);
-  for (int kind = 0; kind < 5; ++kind) {
+  enum Kind { kEveryWay, kTogether, kOneAlone, kAllTheSame, kNone };
+  const char* const names[] = {"every way", "together with scatter", "one alone", "all the same", "none"};
+  for (int kind = kEveryWay; kind <= kNone; ++kind) {
     std::vector<Vec3> from(57), to(57);
     for (std::size_t k = 0; k < from.size(); ++k) {
       from[k] = Vec3(u(rng), u(rng), u(rng));
       const Vec3 scatter(u(rng), u(rng), u(rng));
-      const Vec3 d = kind == 0 ? Vec3(1e-4 * scatter) : kind == 1 ? Vec3(drift + 1e-6 * scatter) : kind == 2 ? Vec3(k == 9 ? drift : Vec3::Zero())
-                     : kind == 3                                                                 ? drift
-                                                                                                  : Vec3::Zero();
+      Vec3 d = Vec3::Zero();
+      switch (kind) {
+        case kEveryWay: d = 1e-4 * scatter; break;
+        case kTogether: d = drift + 1e-6 * scatter; break;
+        case kOneAlone: d = k == 9 ? drift : Vec3::Zero(); break;
+        case kAllTheSame: d = drift; break;
+      }
       to[k] = from[k] + d;
     }
-    SCOPED_TRACE(kind);
+    SCOPED_TRACE(names[kind]);
     for (bool simd : {false, simd_loops_available()}) {
       set_simd_loops(simd);
       const Moves m = moves_since(to.data(), from.data(), PeriodicBox(), 0, static_cast<long>(to.size()));
@@ -361,12 +367,13 @@ TEST(NeighbourList, ApproachBoundsEveryPairsApproach) {
         for (std::size_t b = a + 1; b < to.size(); ++b) closer = std::max(closer, ((to[a] - from[a]) - (to[b] - from[b])).norm());
       EXPECT_GE(m.approach(), closer * (1 - 1e-12));
       EXPECT_LE(m.approach(), 2 * std::sqrt(m.largest2));
-      if (kind == 1) EXPECT_LT(m.approach(), 0.01 * 2 * std::sqrt(m.largest2)) << "moving together";
-      if (kind == 3) EXPECT_LT(m.approach(), 1e-15) << "the same move: only the positions' round-off";
-      if (kind == 4) EXPECT_EQ(m.approach(), 0.0);
+      if (kind == kTogether) EXPECT_LT(m.approach(), 0.01 * 2 * std::sqrt(m.largest2));
+      if (kind == kAllTheSame) EXPECT_LT(m.approach(), 1e-15) << "only the positions' round-off";
+      if (kind == kNone) EXPECT_EQ(m.approach(), 0.0);
     }
     set_simd_loops(true);
   }
+  EXPECT_EQ(Moves().approach(), 0.0) << "no particles";
 }
 
 // A cloud moving together, far from any wall, keeps its list however far it goes: its particles

@@ -12,10 +12,9 @@ void add_particle_work(const Particles& p, const StepWorkInput& in, const Before
   // A run of particles' terms first, without a branch, then each term's sum over the run in one
   // pass (add_all), in place of a FixedSum add per particle and term behind a test of its sums
   // (bench/results/design.md). A term that does not apply is +0, which changes no bit of a FixedSum.
-  constexpr long kRun = 256;
-  double fluid[kRun], prescribed[kRun], global[kRun];
-  for (long first = lo; first < hi; first += kRun) {
-    const long n = std::min(kRun, hi - first);
+  double fluid[kTermRun], prescribed[kTermRun], global[kTermRun];
+  for (long first = lo; first < hi; first += kTermRun) {
+    const long n = std::min(kTermRun, hi - first);
     for (long e = 0; e < n; ++e) {
       const long k = first + e, b = k - lo;
       const Vec3 v = Vec3(0.5 * (before.v[b] + p.v[k])), w = Vec3(0.5 * (before.w[b] + p.w[k]));

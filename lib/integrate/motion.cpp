@@ -23,9 +23,8 @@ inline bool finite_state(const MotionArrays& a, long i) {
 // Where the contacts' work of a run of particles is written before it is summed (MotionWork): the
 // run's terms first, each term's sum over the run in one pass (add_all), as the ledger's other
 // particle terms (forces/step_work.cpp).
-constexpr long kRun = 256;
 struct RunTerms {
-  double damping[kRun], tangential[kRun], rolling[kRun];
+  double damping[kTermRun], tangential[kTermRun], rolling[kTermRun];
 };
 
 // Particle i: held, it stops; prescribed, it moves on at its own v and w, whatever its load; free,
@@ -34,9 +33,11 @@ struct RunTerms {
 template <bool Work>
 inline bool move_one(const MotionArrays& a, const MotionConstants& c, long i, const MotionWork* work, long s, RunTerms* terms, long e) {
   const Vec3 v_before = a.v[i], w_before = a.w[i];
-  if (a.fixed && a.fixed[i]) {
-    if (a.fixed[i] != kPrescribed) a.v[i] = a.w[i] = Vec3::Zero();
-  } else {
+  const std::uint8_t fixed = a.fixed ? a.fixed[i] : 0;
+  const bool held = fixed && fixed != kPrescribed;
+  if (held) {
+    a.v[i] = a.w[i] = Vec3::Zero();
+  } else if (!fixed) {
     a.v[i] = next_velocity(c.ar, a.v[i], a.force[i].v, c.dt / a.mass[i], c.br);
     a.w[i] = next_velocity(c.at, a.w[i], a.torque[i].v, c.dt / sphere_inertia(a.mass[i], a.radius[i]), c.bt);
   }
@@ -48,7 +49,7 @@ inline bool move_one(const MotionArrays& a, const MotionConstants& c, long i, co
                                                          work->couples ? q.couple[s].v.dot(w) : 0.0, a.radius[i], c.dt);
     terms->damping[e] = t.damping, terms->tangential[e] = t.tangential, terms->rolling[e] = t.rolling;
   }
-  if (a.fixed && a.fixed[i] && a.fixed[i] != kPrescribed) return true;  // held: stays where it is
+  if (held) return true;  // stays where it is
   a.x[i] += a.v[i] * c.dt;
   if (c.box.any()) c.box.wrap(a.x[i], a.image[i]);
   return finite_state(a, i);
@@ -144,7 +145,7 @@ DEM_AVX2 long move_four_at_a_time(const MotionArrays& a, const MotionConstants& 
 }
 #endif
 
-// Particles [first, last) (at most kRun with Work), their contacts' work into `terms` from entry 0.
+// Particles [first, last) (at most kTermRun with Work), their contacts' work into `terms` from entry 0.
 template <bool Work>
 long move_run(const MotionArrays& a, const MotionConstants& c, long first, long last, const MotionWork* work, long s0, RunTerms* terms) {
 #ifdef DEM_SIMD_LOOPS
@@ -164,8 +165,8 @@ long move_particles(const MotionArrays& a, const MotionConstants& c, long first,
   if (!work) return move_run<false>(a, c, first, last, nullptr, 0, nullptr);
   long bad = -1;
   RunTerms terms;
-  for (long lo = first; lo < last; lo += kRun) {
-    const long hi = std::min(last, lo + kRun), n = hi - lo;
+  for (long lo = first; lo < last; lo += kTermRun) {
+    const long hi = std::min(last, lo + kTermRun), n = hi - lo;
     bad = std::max(bad, move_run<true>(a, c, lo, hi, work, lo - first, &terms));
     add_all(work->sums->damping, terms.damping, n);
     add_all(work->sums->tangential, terms.tangential, n);

@@ -22,11 +22,8 @@ struct Moves {
   // How much closer any two of the particles can have come (docs/physics.md eq. P85): at most
   // twice the largest move, and at most the diagonal of the box of the moves, since for its
   // centre c, |d_a - d_b| <= |d_a - c| + |d_b - c|. The second is the smaller where the particles
-  // moved together (a free fall, a flow); none moved: 0.
-  double approach() const {
-    const double twice = 2 * std::sqrt(largest2);
-    return largest2 > 0 ? std::min(twice, (hi - lo).norm()) : 0.0;
-  }
+  // moved together (a free fall, a flow); none moved, or no particles: 0.
+  double approach() const { return std::min(2 * std::sqrt(largest2), (hi - lo).norm()); }
 };
 
 // The moves of particles [first, last).

@@ -9,4 +9,7 @@ namespace dem {
 // s.add(x[k]) for each k in [0, n): the same sum, and the same term out of range where one is.
 void add_all(FixedSum& s, const double* x, long n);
 
+// How many terms a loop gathers before each add_all: its arrays stay on the stack and in cache.
+constexpr long kTermRun = 256;
+
 }  // namespace dem
