@@ -4,8 +4,9 @@
 #    0.005 s and at the last step; the balance error within 1 % of its scale at every row (the
 #    scheme's own error is O((ω Δt)²) at each touch, ~1e-3 here), and the pour dissipates.
 # 2. the same stage on two threads, resumed with --restart from a periodic checkpoint taken in
-#    the middle, from a partial CSV holding rows past that checkpoint: the finished CSV equals the
-#    uninterrupted run's on one thread byte for byte (the ledger's sums are in the checkpoint).
+#    the middle, between two rows (step 1,500; a row every 1,328 steps), from a partial CSV
+#    holding rows past that checkpoint: the finished CSV equals the uninterrupted run's on one
+#    thread byte for byte (the ledger's sums are in the checkpoint).
 # 3. a stage without energy_every writes no energy log; --energy-every N asks for one.
 # 4. bad values: energy_every = 0 or -1 in the scene and --energy-every 0 are refused with the key.
 # 5. 20 more spheres poured in during the stage ([[stage.insert]], eq. P45): the balance closes
