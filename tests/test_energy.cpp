@@ -55,18 +55,25 @@ TEST(Energy, DashpotTakesHalfMStarVSquaredTimesOneMinusESquaredInABinaryCollisio
     }
 }
 
+// A material of the default (linear) law: density [kg/m^3], kn = kt [N/m], friction angle [deg],
+// restitution.
+Material linear_material(const char* name, double density, double k, double friction_angle, double restitution) {
+  Material m;
+  m.name = name;
+  m.density = density;
+  m.kn = m.kt = k;
+  m.friction_angle = friction_angle;
+  m.restitution = restitution;
+  return m;
+}
+
 // --- A sphere sliding on a plane until it rolls: friction takes m v0² / 7. ----------------------
 // Closed form: sliding at v0 without spin, the slip speed v - a ω falls at (1 + 5/2) μ g, so the
 // sphere slides a slip distance v0² / (7 μ g), and friction takes μ m g times it = m v0² / 7 (the
 // kinetic energy drops from ½ m v0² to ½ m (5/7 v0)² (1 + 2/5) = 5/7 of it).
 TEST(Energy, FrictionTakesMuMGTimesTheSlipDistanceOfASphereSlidingIntoRolling) {
   Simulation sim;
-  Material m;
-  m.name = "steel";
-  m.density = 7800;
-  m.kn = m.kt = 1e6;
-  m.friction_angle = 20;
-  m.restitution = 0.5;
+  Material m = linear_material("steel", 7800, 1e6, 20, 0.5);
   m.restitution_t = 1;
   sim.materials = MaterialTable({m}, {});
   const double a = 0.005, mu = std::tan(20 * std::numbers::pi / 180), g = 9.81, v0 = 0.5;
@@ -290,12 +297,7 @@ TEST(Energy, ContactWorkIsEachStepsForcesTimesTheMeanVelocities) {
   const int threads_before = omp_get_max_threads();
   omp_set_num_threads(2);
   Simulation sim;
-  Material m;
-  m.name = "glass";
-  m.density = 2500;
-  m.kn = m.kt = 5e4;
-  m.friction_angle = 25;
-  m.restitution = 0.3;
+  const Material m = linear_material("glass", 2500, 5e4, 25, 0.3);
   sim.materials = MaterialTable({m}, {});
   sim.params.gravity = Vec3(0, 0, -9.81);
   sim.params.sort_every = 13, sim.params.sort_min_particles = 0, sim.params.load_block = 16;
