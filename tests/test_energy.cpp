@@ -316,7 +316,7 @@ TEST(Energy, ContactWorkIsEachStepsForcesTimesTheMeanVelocities) {
     sim.particles.w.back() = Vec3(200 * u01(rng) - 100, 200 * u01(rng) - 100, 0);
   }
   sim.dt = 0.2 * sim.critical_time_step();
-  const double kn_pair = sim.materials.pair(0, 0).kn;
+  const double kn = sim.materials.pair(0, 0).kn;  // the spheres' and the walls' (one material)
   sim.ledger.on = true;
   struct State {
     Vec3 x, v, w;
@@ -349,17 +349,18 @@ TEST(Energy, ContactWorkIsEachStepsForcesTimesTheMeanVelocities) {
     const ContactList& pairs = sim.pair_contacts();
     for (std::size_t k = 0; k < pairs.size(); ++k) {
       const State &i = before[pairs.key_i[k]], &j = before[pairs.key_j[k]];
-      take(pairs, k, i.a + j.a - (j.x - i.x).norm(), kn_pair, mean_v(pairs.key_i[k]) - mean_v(pairs.key_j[k]),
+      take(pairs, k, i.a + j.a - (j.x - i.x).norm(), kn, mean_v(pairs.key_i[k]) - mean_v(pairs.key_j[k]),
            Vec3(i.a * mean_w(pairs.key_i[k]) + j.a * mean_w(pairs.key_j[k])));
     }
     const ContactList& walls = sim.wall_contacts();
     for (std::size_t k = 0; k < walls.size(); ++k) {
       const State& i = before[walls.key_i[k]];
       const double dist = (closest_point(sim.wall_geometry()[walls.key_j[k]], i.x) - i.x).norm();
-      take(walls, k, i.a - dist, sim.materials.pair(0, 0).kn, mean_v(walls.key_i[k]), Vec3(i.a * mean_w(walls.key_i[k])));
+      take(walls, k, i.a - dist, kn, mean_v(walls.key_i[k]), Vec3(i.a * mean_w(walls.key_i[k])));
     }
   }
   omp_set_num_threads(threads_before);
+  EXPECT_EQ(sim.step_threads(), 2);
   EXPECT_GT(contact_steps, 20000) << "contacts begin, hold and end many times";
   EXPECT_GT(sim.neighbour_builds(), 100) << "the list is rebuilt often";
   EXPECT_NEAR(sim.ledger.totals.damping_normal, damping.value(), 1e-9 * size);
