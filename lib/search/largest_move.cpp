@@ -75,7 +75,8 @@ DEM_AVX2 Moves four_at_a_time(const Vec3* x, const Vec3* x_build, const Periodic
 
 Moves moves_since(const Vec3* x, const Vec3* x_build, const PeriodicBox& box, long first, long last) {
 #ifdef DEM_SIMD_LOOPS
-  if (simd_loops_on()) return box.any() ? four_at_a_time<true>(x, x_build, box, first, last) : four_at_a_time<false>(x, x_build, box, first, last);
+  if (simd_loops_on())
+    return box.any() ? four_at_a_time<true>(x, x_build, box, first, last) : four_at_a_time<false>(x, x_build, box, first, last);
 #endif
   return one_by_one(x, x_build, box, first, last);
 }
