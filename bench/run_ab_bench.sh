@@ -34,6 +34,7 @@ median() { sort -g | awk '{v[NR] = $1} END {if (NR % 2) print v[(NR + 1) / 2]; e
 settle() {  # build, label -> appends its loop time to $tmp/settle.<label>, its energies to .bits
   local out
   out=$(OMP_NUM_THREADS=1 taskset -c "$pin" "$1/bench/settle_bench" run 10000 20000 1 hertz-explicit 2>/dev/null | tail -1)
+  grep -qE 'loop_s [0-9.]+' <<<"$out" || { echo "settle_bench of $1 failed: $out" >&2; exit 1; }
   grep -oE 'loop_s [0-9.]+' <<<"$out" | awk '{print $2}' >> "$tmp/settle.$2"
   grep -oE '\bke [0-9.e+-]+|rke [0-9.e+-]+' <<<"$out" | tr '\n' ' ' > "$tmp/settle.$2.bits"
 }
@@ -41,6 +42,7 @@ helical() {  # build, label
   local out
   out=$(OMP_NUM_THREADS=2 "$1/tools/run-stage" --scene workflows/helical-flow/scene.toml --stage bench --in "$bed" \
     --out "$tmp/helical.$2.h5" --energy-every 0.01s --checkpoint-minutes 0 2>&1)
+  grep -qE 'done: [0-9]+ steps in [0-9.]+ s' <<<"$out" || { echo "run-stage of $1 failed: $(tail -3 <<<"$out")" >&2; exit 1; }
   grep -oE 'done: [0-9]+ steps in [0-9.]+ s' <<<"$out" | awk '{print $5}' >> "$tmp/helical.$2"
 }
 
