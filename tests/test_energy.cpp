@@ -337,7 +337,7 @@ TEST(Energy, ContactWorkIsEachStepsForcesTimesTheMeanVelocities) {
     for (std::size_t s = 0; s < sim.particles.size(); ++s) slot[sim.particles.id[s]] = s;
     const auto mean_v = [&](Index id) { return Vec3(0.5 * (before[id].v + sim.particles.v[slot[id]])); };
     const auto mean_w = [&](Index id) { return Vec3(0.5 * (before[id].w + sim.particles.w[slot[id]])); };
-    const auto take = [&](const ContactList& list, std::size_t k, double overlap, double kn, const Vec3& dv, const Vec3& arm_w) {
+    const auto take = [&](const ContactList& list, std::size_t k, double overlap, const Vec3& dv, const Vec3& arm_w) {
       const Vec3 nk = list.normal[k], force = list.sum[k].force;
       const double f_n = -force.dot(nk);
       const Vec3 f_d = (f_n - kn * overlap) * nk, f_t = force + f_n * nk;
@@ -349,14 +349,14 @@ TEST(Energy, ContactWorkIsEachStepsForcesTimesTheMeanVelocities) {
     const ContactList& pairs = sim.pair_contacts();
     for (std::size_t k = 0; k < pairs.size(); ++k) {
       const State &i = before[pairs.key_i[k]], &j = before[pairs.key_j[k]];
-      take(pairs, k, i.a + j.a - (j.x - i.x).norm(), kn, mean_v(pairs.key_i[k]) - mean_v(pairs.key_j[k]),
+      take(pairs, k, i.a + j.a - (j.x - i.x).norm(), mean_v(pairs.key_i[k]) - mean_v(pairs.key_j[k]),
            Vec3(i.a * mean_w(pairs.key_i[k]) + j.a * mean_w(pairs.key_j[k])));
     }
     const ContactList& walls = sim.wall_contacts();
     for (std::size_t k = 0; k < walls.size(); ++k) {
       const State& i = before[walls.key_i[k]];
       const double dist = (closest_point(sim.wall_geometry()[walls.key_j[k]], i.x) - i.x).norm();
-      take(walls, k, i.a - dist, kn, mean_v(walls.key_i[k]), Vec3(i.a * mean_w(walls.key_i[k])));
+      take(walls, k, i.a - dist, mean_v(walls.key_i[k]), Vec3(i.a * mean_w(walls.key_i[k])));
     }
   }
   omp_set_num_threads(threads_before);
